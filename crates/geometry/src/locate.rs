@@ -1,0 +1,134 @@
+//! Point location by the paper's fan-sector binary search (§3.2.2.1).
+//!
+//! Rays from the centroid `G` through the vertices `q₀ … qₙ₋₁` cut the plane into `n` sectors;
+//! sector `i` lies between the rays through `qᵢ` and `qᵢ₊₁`. Since `G` is strictly inside a convex
+//! polygon, the rays' angles about `G`, measured counter-clockwise from `q₀`, increase with `i`, so
+//! a binary search on signed areas finds the sector of a point `p` in O(log n). `p` is inside
+//! exactly when it is not to the right of the sector's edge: `area(qᵢ, qᵢ₊₁, p) ≥ 0` (the
+//! boundary counts, within the polygon's [tolerance](crate::ConvexPolygon::tolerance)).
+//!
+//! The paper's printed pseudo-code has unbalanced braces; this is the search it intends, written
+//! as "last vertex whose angle does not exceed `p`'s". Angles are never computed: the comparison
+//! uses which half-plane of the ray `G q₀` a direction falls in, then one signed area.
+
+use nalgebra::{Point2, Vector2};
+
+use crate::{ConvexPolygon, PolygonKind, signed_area};
+
+/// A sector of the fan about the centroid: sector `i` lies between the rays through vertices `i`
+/// and `i + 1`, and its outer side is edge `i`. Keep the one a query returns to start the next
+/// query near a point that moves a little (as a solver's sweeps do).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+pub struct Sector(pub usize);
+
+/// Where a point lies relative to the polygon.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Location {
+    /// The fan sector holding the point (always `Sector(0)` for a point or a segment).
+    pub sector: Sector,
+    /// Inside or on the boundary.
+    pub inside: bool,
+}
+
+impl ConvexPolygon {
+    /// Whether `p` lies inside or on the boundary (within [`tolerance`](Self::tolerance)), by the
+    /// fan-sector binary search: O(log n).
+    pub fn contains(&self, p: &Point2<f64>) -> bool {
+        self.locate(p).inside
+    }
+
+    /// The sector of `p` and whether it is inside.
+    pub fn locate(&self, p: &Point2<f64>) -> Location {
+        match self.kind() {
+            PolygonKind::Polygon => self.locate_in_sector(p, self.sector_of(p)),
+            _ => self.locate_degenerate(p),
+        }
+    }
+
+    /// [`locate`](Self::locate), trying sector `hint` first: O(1) when `p` is still in it.
+    pub fn locate_from(&self, p: &Point2<f64>, hint: Sector) -> Location {
+        match self.kind() {
+            PolygonKind::Polygon => {
+                let sector = if hint.0 < self.vertices().len() && self.sector_holds(hint, p) {
+                    hint
+                } else {
+                    self.sector_of(p)
+                };
+                self.locate_in_sector(p, sector)
+            }
+            _ => self.locate_degenerate(p),
+        }
+    }
+
+    /// The binary search: the last vertex `i` whose angle about `G` (from `q₀`) is at most `p`'s.
+    fn sector_of(&self, p: &Point2<f64>) -> Sector {
+        let angle = FanAngle::new(self);
+        let (mut lo, mut hi) = (0, self.vertices().len());
+        while hi - lo > 1 {
+            let mid = (lo + hi) / 2;
+            if angle.precedes(&p.coords, &self.vertex(mid).coords) {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        Sector(lo)
+    }
+
+    /// `p` lies between the rays through vertices `i` and `i + 1`.
+    fn sector_holds(&self, Sector(i): Sector, p: &Point2<f64>) -> bool {
+        let angle = FanAngle::new(self);
+        let after_start = !angle.precedes(&p.coords, &self.vertex(i).coords);
+        let before_end =
+            i + 1 == self.vertices().len() || angle.precedes(&p.coords, &self.vertex(i + 1).coords);
+        after_start && before_end
+    }
+
+    fn locate_in_sector(&self, p: &Point2<f64>, sector: Sector) -> Location {
+        let (a, b) = (self.vertex(sector.0), self.vertex(sector.0 + 1));
+        // Signed distance of p from edge i, positive inside.
+        let distance = 2.0 * signed_area(&a, &b, p) / (b - a).norm();
+        Location {
+            sector,
+            inside: distance >= -self.tolerance(),
+        }
+    }
+
+    fn locate_degenerate(&self, p: &Point2<f64>) -> Location {
+        let nearest = self.nearest_point_degenerate(p);
+        Location {
+            sector: Sector(0),
+            inside: (nearest - p).norm() <= self.tolerance(),
+        }
+    }
+}
+
+/// Compares angles about the centroid `G`, measured counter-clockwise from the ray `G q₀`, without
+/// computing them: first by half-plane of that ray, then by one signed area.
+struct FanAngle {
+    centroid: Vector2<f64>,
+    start: Vector2<f64>,
+}
+
+impl FanAngle {
+    fn new(polygon: &ConvexPolygon) -> Self {
+        let centroid = polygon.centroid().coords;
+        Self {
+            centroid,
+            start: polygon.vertex(0).coords - centroid,
+        }
+    }
+
+    /// 0 for directions in `[0, π)` from the start ray, 1 for `[π, 2π)`.
+    fn half(&self, v: &Vector2<f64>) -> u8 {
+        let cross = self.start.perp(v);
+        u8::from(!(cross > 0.0 || (cross == 0.0 && self.start.dot(v) > 0.0)))
+    }
+
+    /// The angle of `a` is strictly smaller than that of `b`.
+    fn precedes(&self, a: &Vector2<f64>, b: &Vector2<f64>) -> bool {
+        let (a, b) = (a - self.centroid, b - self.centroid);
+        let (half_a, half_b) = (self.half(&a), self.half(&b));
+        half_a < half_b || (half_a == half_b && a.perp(&b) > 0.0)
+    }
+}

@@ -1,0 +1,232 @@
+//! The support polygon: a convex hull that keeps every corner and degrades to a segment or a point.
+//!
+//! Contact clipping produces the support polygon's corners in no particular order, with repeats
+//! (a corner found from both bodies) and with points on edges. [`ConvexPolygon::from_points`]
+//! turns them into a counter-clockwise hull with Andrew's monotone chain, dropping a point when it
+//! lies within a *length tolerance* of the hull through its neighbours. The tolerance scales with
+//! the input ([`RELATIVE_TOLERANCE`] of the bounding-box diagonal, plus the rounding of the
+//! coordinates' magnitude), so a 1 mm face and a 1 km face are treated alike.
+//!
+//! Degenerate contacts stay meaningful rather than failing: collinear input is a segment (an edge
+//! resting on a face), coincident input a point (a corner). Every query of this crate handles all
+//! three kinds.
+
+use nalgebra::Point2;
+
+use crate::GeometryError;
+use crate::area::{self, signed_area};
+use crate::nearest::closest_point_on_segment;
+
+/// Points closer than this fraction of the input's bounding-box diagonal to the hull through their
+/// neighbours are dropped (as repeated or collinear). 1e-9 keeps slivers a millionth of their
+/// length thin while absorbing the rounding of contact clipping.
+pub const RELATIVE_TOLERANCE: f64 = 1e-9;
+
+/// Bound on rounding relative to the coordinates' magnitude: differences of coordinates near `X`
+/// carry an error of a few `ε·X`, so lengths below that cannot be resolved at all.
+const ROUNDING_ULPS: f64 = 8.0 * f64::EPSILON;
+
+/// What a support polygon degenerates to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PolygonKind {
+    /// One distinct point: a corner contact.
+    Point,
+    /// Two distinct points: an edge contact.
+    Segment,
+    /// Three or more vertices enclosing a positive area: a face contact.
+    Polygon,
+}
+
+/// A convex polygon in a contact plane, counter-clockwise, without repeated or collinear vertices.
+///
+/// Area, centroid and the length tolerance are computed once at construction; queries only read.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConvexPolygon {
+    vertices: Vec<Point2<f64>>,
+    area: f64,
+    centroid: Point2<f64>,
+    tolerance: f64,
+}
+
+impl ConvexPolygon {
+    /// The convex hull of `points`, counter-clockwise, with repeated and collinear points removed.
+    ///
+    /// One distinct point gives a [`PolygonKind::Point`], collinear points a
+    /// [`PolygonKind::Segment`]. Fails on empty input or a non-finite coordinate.
+    ///
+    /// ```
+    /// use nalgebra::Point2;
+    /// use tatami_geometry::{ConvexPolygon, PolygonKind};
+    ///
+    /// let edge = ConvexPolygon::from_points(&[
+    ///     Point2::new(0.0, 0.0), Point2::new(2.0, 0.0), Point2::new(1.0, 0.0),
+    /// ])?;
+    /// assert_eq!(edge.kind(), PolygonKind::Segment);
+    /// assert_eq!(edge.centroid(), Point2::new(1.0, 0.0));
+    /// # Ok::<(), tatami_geometry::GeometryError>(())
+    /// ```
+    pub fn from_points(points: &[Point2<f64>]) -> Result<Self, GeometryError> {
+        if points.is_empty() {
+            return Err(GeometryError::NoPoints);
+        }
+        if let Some((index, p)) = points
+            .iter()
+            .enumerate()
+            .find(|(_, p)| !(p.x.is_finite() && p.y.is_finite()))
+        {
+            return Err(GeometryError::NonFinitePoint {
+                index,
+                x: p.x,
+                y: p.y,
+            });
+        }
+        let tolerance = length_tolerance(points);
+        let vertices = hull(points, tolerance);
+        let (area, centroid) = area::area_and_centroid(&vertices);
+        Ok(Self {
+            vertices,
+            area,
+            centroid,
+            tolerance,
+        })
+    }
+
+    /// The vertices, counter-clockwise seen from `+z` (the contact normal).
+    pub fn vertices(&self) -> &[Point2<f64>] {
+        &self.vertices
+    }
+
+    /// Enclosed area; zero for a point or a segment.
+    pub fn area(&self) -> f64 {
+        self.area
+    }
+
+    /// Area centroid `G`; a segment's midpoint; a point itself. The fan of the sector search and
+    /// the face constraint are both centred here.
+    pub fn centroid(&self) -> Point2<f64> {
+        self.centroid
+    }
+
+    /// Whether the polygon is a point, a segment or has area.
+    pub fn kind(&self) -> PolygonKind {
+        match self.vertices.len() {
+            1 => PolygonKind::Point,
+            2 => PolygonKind::Segment,
+            _ => PolygonKind::Polygon,
+        }
+    }
+
+    /// Length below which two points are not told apart (and the width of the band in which a
+    /// point counts as on the boundary). See [`RELATIVE_TOLERANCE`].
+    pub fn tolerance(&self) -> f64 {
+        self.tolerance
+    }
+
+    /// Vertex `i` with wrap-around, so edge `i` is `(vertex(i), vertex(i + 1))`.
+    pub(crate) fn vertex(&self, i: usize) -> Point2<f64> {
+        self.vertices[i % self.vertices.len()]
+    }
+}
+
+/// The scale-aware length tolerance of a point set: [`RELATIVE_TOLERANCE`] of its bounding-box
+/// diagonal plus the rounding of its largest coordinate.
+fn length_tolerance(points: &[Point2<f64>]) -> f64 {
+    let (mut lo, mut hi) = (points[0], points[0]);
+    for p in points {
+        lo = lo.inf(p);
+        hi = hi.sup(p);
+    }
+    let magnitude = lo.coords.abs().sup(&hi.coords.abs()).max();
+    RELATIVE_TOLERANCE * (hi - lo).norm() + ROUNDING_ULPS * magnitude
+}
+
+/// The exact hull, then [`simplify`]: every input point ends within `tolerance` of the result.
+fn hull(points: &[Point2<f64>], tolerance: f64) -> Vec<Point2<f64>> {
+    simplify(monotone_chain(points), tolerance)
+}
+
+/// Andrew's monotone chain keeping strict left turns only, as the floating-point sign says.
+fn monotone_chain(points: &[Point2<f64>]) -> Vec<Point2<f64>> {
+    let mut sorted = points.to_vec();
+    sorted.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    sorted.dedup();
+
+    let mut chain: Vec<Point2<f64>> = Vec::with_capacity(sorted.len() + 1);
+    let push = |chain: &mut Vec<Point2<f64>>, floor: usize, p: Point2<f64>| {
+        while chain.len() >= floor + 2
+            && signed_area(&chain[chain.len() - 2], &chain[chain.len() - 1], &p) <= 0.0
+        {
+            chain.pop();
+        }
+        chain.push(p);
+    };
+    for &p in &sorted {
+        push(&mut chain, 0, p);
+    }
+    // The upper hull runs back from the lower hull's last point, which stays in place.
+    let upper_floor = chain.len() - 1;
+    for &p in sorted.iter().rev().skip(1) {
+        push(&mut chain, upper_floor, p);
+    }
+    if chain.len() > 1 {
+        chain.pop(); // the upper hull ends where the lower began
+    }
+    chain
+}
+
+/// Removes near-repeated and near-collinear vertices of an exact hull `ring`, smallest deviation
+/// first. A vertex goes only if every vertex of the *original* ring between its neighbours lies
+/// within `tolerance` of the chord joining them, so removals never compound: the result is within
+/// `tolerance` of every input point. A ring whose every vertex is within `tolerance` of one of
+/// them becomes that point.
+///
+/// Decision record: tolerant turn tests inside the monotone chain were rejected because a point
+/// dropped against one chord can end several tolerances outside the next.
+fn simplify(ring: Vec<Point2<f64>>, tolerance: f64) -> Vec<Point2<f64>> {
+    let n = ring.len();
+    if n <= 1 {
+        return ring;
+    }
+    // Largest distance of the original vertices strictly between `a` and `c` (cyclically) from
+    // the segment `a c`.
+    let deviation = |a: usize, c: usize| -> f64 {
+        let (pa, pc) = (ring[a], ring[c]);
+        (1..(c + n - a) % n)
+            .map(|k| {
+                let p = ring[(a + k) % n];
+                (closest_point_on_segment(&pa, &pc, &p) - p).norm()
+            })
+            .fold(0.0, f64::max)
+    };
+    let mut kept: Vec<usize> = (0..n).collect();
+    let mut cost: Vec<f64> = (0..n)
+        .map(|i| deviation((i + n - 1) % n, (i + 1) % n))
+        .collect();
+    while kept.len() > 2 {
+        let (slot, &worst) = cost
+            .iter()
+            .enumerate()
+            .min_by(|x, y| x.1.total_cmp(y.1))
+            .expect("more than two vertices are kept");
+        if worst > tolerance {
+            break;
+        }
+        kept.remove(slot);
+        cost.remove(slot);
+        let k = kept.len();
+        for s in [(slot + k - 1) % k, slot % k] {
+            cost[s] = if k <= 2 {
+                0.0 // a segment's ends are judged below
+            } else {
+                deviation(kept[(s + k - 1) % k], kept[(s + 1) % k])
+            };
+        }
+    }
+    if kept.len() == 2 {
+        let within_of = |end: usize| ring.iter().all(|p| (p - ring[end]).norm() <= tolerance);
+        if let Some(&end) = kept.iter().find(|&&end| within_of(end)) {
+            kept = vec![end];
+        }
+    }
+    kept.into_iter().map(|i| ring[i]).collect()
+}
