@@ -1,0 +1,103 @@
+//! Blocks (one contact's rows) and the projection trait the contact models implement.
+//!
+//! PGS updates a block's rows one at a time; after each update it calls the block's
+//! [`Projection::project`], naming the row that changed, and pushes whatever the projection moved
+//! into the velocities. The block's impulses are thus admissible after every update, so the next
+//! row never reacts to an impulse that is about to be clamped away (projecting only once per
+//! block was tried and rejected: its fixed point is not the LCP's when a clamped row is coupled to
+//! a later one). Bounds that depend on another row (friction on the normal impulse, the face
+//! model's twist and centre of pressure on the normal force) live in the projection.
+//!
+//! The direct solver needs the admissible set as linear constraints: [`Projection::bound`] gives
+//! it row by row when it is a product of [`RowBound`]s, and [`project_to_bounds`] is the PGS
+//! projection of that same set, so both solvers solve one problem.
+
+use std::ops::Range;
+
+use crate::BodyId;
+
+/// The rows of one contact between bodies A and B, and how their impulses are projected.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Block<P> {
+    /// First body; rows' `*_a` Jacobian halves act on it.
+    pub body_a: BodyId,
+    /// Second body; rows' `*_b` Jacobian halves act on it.
+    pub body_b: BodyId,
+    /// Index range of the block's rows in [`Problem::rows`](crate::Problem::rows).
+    pub rows: Range<usize>,
+    /// Maps the block's impulses onto its admissible set.
+    pub projection: P,
+}
+
+/// The admissible impulses of one row, possibly scaled by another row of the same block.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum RowBound {
+    /// `λ ≥ 0`, complementary to `w ≥ target`: a normal row.
+    NonNegative,
+    /// `|λ| ≤ coefficient · λ_normal`, with `normal` the index of a [`RowBound::NonNegative`] row
+    /// *within the block*: a friction or twist row (box friction, one axis at a time).
+    Friction {
+        /// Row index, within the block, of the normal impulse that scales the bound.
+        normal: usize,
+        /// Friction coefficient (times a lever arm for a twist row), ≥ 0.
+        coefficient: f64,
+    },
+    /// `lo ≤ λ ≤ hi`, constant bounds (either may be infinite).
+    Box {
+        /// Lower bound.
+        lo: f64,
+        /// Upper bound.
+        hi: f64,
+    },
+}
+
+/// How a block's impulses are mapped onto its admissible set during a sweep.
+pub trait Projection {
+    /// Projects `impulses` (the block's rows, in order) in place after row `changed` was updated.
+    /// `row_velocity[k]` is row `k`'s velocity `w` measured just before its latest update (current
+    /// for `changed`), for choices that depend on motion such as static or kinetic friction.
+    fn project(&mut self, impulses: &mut [f64], row_velocity: &[f64], changed: usize);
+
+    /// Row `row`'s bound, if the admissible set is a product of row bounds; `None` otherwise
+    /// (the direct solver then rejects the block).
+    fn bound(&self, row: usize) -> Option<RowBound>;
+}
+
+/// Projects `impulses` onto the bounds given by `bound_of`: normal rows first, then the rows
+/// whose bounds depend on them, so friction sees the clamped normal impulse. Rows without a bound
+/// are left alone. Never panics: `max`/`min` rather than `clamp`, so a NaN stays visible to the
+/// solver's finiteness check.
+pub fn project_to_bounds(bound_of: impl Fn(usize) -> Option<RowBound>, impulses: &mut [f64]) {
+    for (k, impulse) in impulses.iter_mut().enumerate() {
+        if let Some(RowBound::NonNegative) = bound_of(k) {
+            *impulse = impulse.max(0.0);
+        }
+    }
+    for k in 0..impulses.len() {
+        match bound_of(k) {
+            Some(RowBound::Friction {
+                normal,
+                coefficient,
+            }) => {
+                let limit = coefficient * impulses[normal].max(0.0);
+                impulses[k] = impulses[k].max(-limit).min(limit);
+            }
+            Some(RowBound::Box { lo, hi }) => impulses[k] = impulses[k].max(lo).min(hi),
+            Some(RowBound::NonNegative) | None => {}
+        }
+    }
+}
+
+/// A projection given by one [`RowBound`] per row.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BoundsProjection(pub Vec<RowBound>);
+
+impl Projection for BoundsProjection {
+    fn project(&mut self, impulses: &mut [f64], _row_velocity: &[f64], _changed: usize) {
+        project_to_bounds(|k| self.0.get(k).copied(), impulses);
+    }
+
+    fn bound(&self, row: usize) -> Option<RowBound> {
+        self.0.get(row).copied()
+    }
+}

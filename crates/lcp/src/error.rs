@@ -1,0 +1,71 @@
+//! Errors of the solver layer.
+
+use thiserror::Error;
+
+use crate::BodyId;
+
+/// Why a solve stopped without an answer.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum LcpError {
+    /// Lemke's method left along an unbounded ray: it found no solution (the problem may have
+    /// none, as when `A` has a non-positive row against a negative `q`).
+    #[error("Lemke's method ended on a ray after {pivots} pivots: no solution found")]
+    RayTermination {
+        /// Pivots made before the ray was met.
+        pivots: usize,
+    },
+    /// The pivot budget ran out.
+    #[error("Lemke's method did not finish within {limit} pivots")]
+    PivotLimit {
+        /// The budget that was given.
+        limit: usize,
+    },
+    /// A matrix or vector entry was NaN or infinite.
+    #[error("non-finite entry in the {what}")]
+    NonFiniteInput {
+        /// Which input: `"matrix"`, `"vector q"`, `"bounds"`.
+        what: &'static str,
+    },
+    /// Sizes of the inputs do not agree.
+    #[error("dimension mismatch: {what}")]
+    DimensionMismatch {
+        /// What disagreed, in words.
+        what: String,
+    },
+    /// A lower bound exceeds its upper bound.
+    #[error("row {row} has lower bound {lo} above upper bound {hi}")]
+    InvalidBounds {
+        /// The row.
+        row: usize,
+        /// Its lower bound.
+        lo: f64,
+        /// Its upper bound.
+        hi: f64,
+    },
+    /// A body's mass properties or velocity were not finite.
+    #[error("body {} has a non-finite mass property or velocity", body.0)]
+    NonFiniteBody {
+        /// The body.
+        body: BodyId,
+    },
+    /// A block's rows or impulses became (or were given) non-finite.
+    #[error("block {block} has a non-finite Jacobian, target or impulse")]
+    NonFinite {
+        /// Index of the block (one contact).
+        block: usize,
+    },
+    /// A block's rows do not follow the previous block's or name an unknown body.
+    #[error("block {block} does not match the rows or bodies of the problem")]
+    MalformedBlock {
+        /// Index of the block.
+        block: usize,
+    },
+    /// The direct solver met a block whose constraint set is not a product of row bounds.
+    #[error(
+        "block {block} cannot be written as row bounds; the direct solver needs its bounds form"
+    )]
+    Unsupported {
+        /// Index of the block.
+        block: usize,
+    },
+}

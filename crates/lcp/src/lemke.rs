@@ -1,0 +1,237 @@
+//! Lemke's complementary pivoting for the standard LCP `z ≥ 0, w = A z + q ≥ 0, zᵀw = 0`.
+//!
+//! Tableau form of `w − A z − e z₀ = q` (covering vector `e = 1`). `z₀` enters first, replacing
+//! the most negative `qᵢ`; then the complement of each leaving variable enters, until `z₀` leaves
+//! (a solution) or an entering column has no positive entry (a ray: no solution found). For
+//! P-matrices and positive semi-definite `A` with a feasible problem, Lemke always finishes.
+//!
+//! Degenerate problems (ties in the ratio test, e.g. all `qᵢ` equal) cycle under a naive rule.
+//! The **lexicographic** ratio test breaks ties by the rows of `B⁻¹` (the tableau's `w` columns),
+//! which keeps every tableau row lexicographically positive and so never revisits a basis.
+//!
+//! After the last pivot the basic values are re-solved from the original data with an LU
+//! factorisation of the final basis (faer's partial-pivot LU), removing the round-off that the
+//! pivots accumulated; the polished answer is kept when its residual is smaller.
+
+use faer::Mat;
+use faer::linalg::solvers::Solve;
+use nalgebra::{DMatrix, DVector};
+
+use crate::LcpError;
+use crate::residual;
+
+/// Relative size below which a pivot-column entry is taken as zero.
+const PIVOT_TOLERANCE: f64 = 1e-12;
+
+/// Solves `z ≥ 0, w = a z + q ≥ 0, zᵀw = 0` by Lemke's method with at most `max_pivots` pivots.
+///
+/// Errors: [`LcpError::RayTermination`] when no solution is found (e.g. an infeasible problem),
+/// [`LcpError::PivotLimit`], [`LcpError::NonFiniteInput`], [`LcpError::DimensionMismatch`].
+pub fn lemke(
+    a: &DMatrix<f64>,
+    q: &DVector<f64>,
+    max_pivots: usize,
+) -> Result<DVector<f64>, LcpError> {
+    solve(a, q, max_pivots).map(|(z, _)| z)
+}
+
+/// [`lemke`], also returning the number of pivots made.
+pub fn solve(
+    a: &DMatrix<f64>,
+    q: &DVector<f64>,
+    max_pivots: usize,
+) -> Result<(DVector<f64>, usize), LcpError> {
+    let n = q.len();
+    if a.nrows() != n || a.ncols() != n {
+        return Err(LcpError::DimensionMismatch {
+            what: format!(
+                "matrix is {}×{} but q has {} entries",
+                a.nrows(),
+                a.ncols(),
+                n
+            ),
+        });
+    }
+    if a.iter().any(|x| !x.is_finite()) {
+        return Err(LcpError::NonFiniteInput { what: "matrix" });
+    }
+    if q.iter().any(|x| !x.is_finite()) {
+        return Err(LcpError::NonFiniteInput { what: "vector q" });
+    }
+    if q.iter().all(|&x| x >= 0.0) {
+        return Ok((DVector::zeros(n), 0));
+    }
+    let mut tableau = Tableau::new(a, q);
+    let z0 = 2 * n;
+    // First pivot: z₀ replaces the most negative qᵢ; among ties the last row, which keeps the
+    // tableau lexicographically positive.
+    let first = (0..n)
+        .rev()
+        .min_by(|&i, &j| q[i].total_cmp(&q[j]))
+        .expect("n > 0");
+    let left = tableau.pivot(first, z0);
+    let mut entering = tableau.complement(left);
+    let mut pivots = 1;
+    loop {
+        if pivots >= max_pivots {
+            return Err(LcpError::PivotLimit { limit: max_pivots });
+        }
+        let row = tableau
+            .ratio_test(entering)
+            .ok_or(LcpError::RayTermination { pivots })?;
+        let leaving = tableau.pivot(row, entering);
+        pivots += 1;
+        if leaving == z0 {
+            break;
+        }
+        entering = tableau.complement(leaving);
+    }
+    let z = tableau.solution();
+    let polished = tableau
+        .polish(a, q)
+        .filter(|p| residual::lcp_error(a, q, p) < residual::lcp_error(a, q, &z));
+    Ok((polished.unwrap_or(z), pivots))
+}
+
+/// Row-major tableau `[w (n) | z (n) | z₀ | rhs]` with the basic variable of each row.
+struct Tableau {
+    n: usize,
+    width: usize,
+    cells: Vec<f64>,
+    basis: Vec<usize>,
+    scale: f64,
+}
+
+impl Tableau {
+    fn new(a: &DMatrix<f64>, q: &DVector<f64>) -> Self {
+        let n = q.len();
+        let width = 2 * n + 2;
+        let mut cells = vec![0.0; n * width];
+        for i in 0..n {
+            let row = &mut cells[i * width..(i + 1) * width];
+            row[i] = 1.0;
+            for j in 0..n {
+                row[n + j] = -a[(i, j)];
+            }
+            row[2 * n] = -1.0;
+            row[2 * n + 1] = q[i];
+        }
+        let scale = a.amax().max(1.0);
+        Self {
+            n,
+            width,
+            cells,
+            basis: (0..n).collect(),
+            scale,
+        }
+    }
+
+    fn at(&self, i: usize, j: usize) -> f64 {
+        self.cells[i * self.width + j]
+    }
+
+    fn rhs(&self, i: usize) -> f64 {
+        self.at(i, self.width - 1)
+    }
+
+    /// `wᵢ ↔ zᵢ`.
+    fn complement(&self, variable: usize) -> usize {
+        if variable < self.n {
+            variable + self.n
+        } else {
+            variable - self.n
+        }
+    }
+
+    /// The leaving row for `column`: minimum ratio `rhsᵢ / tᵢ` over `tᵢ > 0`, ties broken by
+    /// `z₀` leaving if it can, then lexicographically by the rows of `B⁻¹ / tᵢ`.
+    fn ratio_test(&self, column: usize) -> Option<usize> {
+        let tolerance = PIVOT_TOLERANCE * self.scale;
+        let candidates: Vec<usize> = (0..self.n)
+            .filter(|&i| self.at(i, column) > tolerance)
+            .collect();
+        let ratio = |i: usize| self.rhs(i) / self.at(i, column);
+        let best = candidates
+            .iter()
+            .map(|&i| ratio(i))
+            .fold(f64::INFINITY, f64::min);
+        if !best.is_finite() {
+            return None;
+        }
+        let tie = 1e-12 * (1.0 + best.abs());
+        let tied: Vec<usize> = candidates
+            .into_iter()
+            .filter(|&i| ratio(i) - best <= tie)
+            .collect();
+        if let Some(&i) = tied.iter().find(|&&i| self.basis[i] == 2 * self.n) {
+            return Some(i);
+        }
+        tied.into_iter().min_by(|&i, &k| {
+            (0..self.n)
+                .map(|j| {
+                    (
+                        self.at(i, j) / self.at(i, column),
+                        self.at(k, j) / self.at(k, column),
+                    )
+                })
+                .map(|(x, y)| x.total_cmp(&y))
+                .find(|o| o.is_ne())
+                .unwrap_or(std::cmp::Ordering::Equal)
+        })
+    }
+
+    /// Pivots `column` into the basis at `row`; returns the variable that left.
+    fn pivot(&mut self, row: usize, column: usize) -> usize {
+        let w = self.width;
+        let p = self.at(row, column);
+        for x in &mut self.cells[row * w..(row + 1) * w] {
+            *x /= p;
+        }
+        let pivot_row: Vec<f64> = self.cells[row * w..(row + 1) * w].to_vec();
+        for i in (0..self.n).filter(|&i| i != row) {
+            let factor = self.at(i, column);
+            if factor != 0.0 {
+                for (x, y) in self.cells[i * w..(i + 1) * w].iter_mut().zip(&pivot_row) {
+                    *x -= factor * y;
+                }
+            }
+        }
+        std::mem::replace(&mut self.basis[row], column)
+    }
+
+    fn solution(&self) -> DVector<f64> {
+        let mut z = DVector::zeros(self.n);
+        for (i, &v) in self.basis.iter().enumerate() {
+            if (self.n..2 * self.n).contains(&v) {
+                z[v - self.n] = self.rhs(i).max(0.0);
+            }
+        }
+        z
+    }
+
+    /// Re-solves the final basis `B x = q` (columns of `[I | −A]`) with faer's LU.
+    fn polish(&self, a: &DMatrix<f64>, q: &DVector<f64>) -> Option<DVector<f64>> {
+        let n = self.n;
+        let basis = Mat::<f64>::from_fn(n, n, |i, k| {
+            let v = self.basis[k];
+            if v < n {
+                f64::from(u8::from(i == v))
+            } else {
+                -a[(i, v - n)]
+            }
+        });
+        let rhs = Mat::<f64>::from_fn(n, 1, |i, _| q[i]);
+        let x = basis.partial_piv_lu().solve(&rhs);
+        let mut z = DVector::zeros(n);
+        for (k, &v) in self.basis.iter().enumerate() {
+            let value = x[(k, 0)];
+            if !value.is_finite() {
+                return None;
+            }
+            if v >= n {
+                z[v - n] = value.max(0.0);
+            }
+        }
+        Some(z)
+    }
+}

@@ -1,0 +1,96 @@
+//! The solver layer: constraint rows, projected Gauss–Seidel, and a pivoting direct solver.
+//!
+//! It knows rows, blocks and the velocities of bodies; it knows nothing of geometry or contact
+//! models. A contact model builds, for each contact, a [`Block`] of [`Row`]s between bodies A and
+//! B and a [`Projection`] that maps the block's impulses onto its admissible set (normal ≥ 0,
+//! friction bounded by the normal, …). Conventions (DESIGN §1): a row's velocity is `w = J v`,
+//! the row wants `w⁺ = target`, and an impulse `λ` changes the velocities by `M⁻¹ Jᵀ λ`.
+//!
+//! - [`pgs`]: sequential impulses, the real-time solver (paper: 15 sweeps).
+//! - [`direct`]: the same contact problem solved exactly by [`lemke`] on an equivalent
+//!   standard LCP, the reference for PGS error.
+//! - [`dense`]: `A = J M⁻¹ Jᵀ`, `b` and the dense boxed PGS [`pgs_dense`].
+//! - [`residual`]: complementarity, feasibility and error metrics.
+//!
+//! ```
+//! use nalgebra::{DMatrix, DVector};
+//!
+//! // z ≥ 0, w = A z + q ≥ 0, zᵀw = 0 (Murty's 2×2 example): z = (4/3, 7/3), w = 0.
+//! let a = DMatrix::from_row_slice(2, 2, &[2.0, 1.0, 1.0, 2.0]);
+//! let q = DVector::from_vec(vec![-5.0, -6.0]);
+//! let z = tatami_lcp::lemke(&a, &q, 100)?;
+//! assert!((z[0] - 4.0 / 3.0).abs() < 1e-12 && (z[1] - 7.0 / 3.0).abs() < 1e-12);
+//! # Ok::<(), tatami_lcp::LcpError>(())
+//! ```
+
+mod block;
+mod body;
+pub mod dense;
+pub mod direct;
+mod error;
+pub mod lemke;
+pub mod pgs;
+pub mod residual;
+mod row;
+
+pub use block::{Block, BoundsProjection, Projection, RowBound, project_to_bounds};
+pub use body::{BodyId, SolverBody};
+pub use dense::pgs_dense;
+pub use error::LcpError;
+pub use lemke::lemke;
+pub use row::{Jacobian, Row};
+
+/// Bodies, rows and blocks: one velocity-level contact problem.
+///
+/// Rows of block `k` are `rows[blocks[k].rows.clone()]`. The solvers write impulses into the rows
+/// and the resulting velocities into the bodies.
+#[derive(Debug, Clone)]
+pub struct Problem<P> {
+    /// Every body a row may touch; fixed bodies have zero inverse mass and inertia.
+    pub bodies: Vec<SolverBody>,
+    /// All rows, grouped contiguously by block.
+    pub rows: Vec<Row>,
+    /// One block per contact (or per contact point, for the vertex model).
+    pub blocks: Vec<Block<P>>,
+}
+
+impl<P> Default for Problem<P> {
+    fn default() -> Self {
+        Self {
+            bodies: Vec::new(),
+            rows: Vec::new(),
+            blocks: Vec::new(),
+        }
+    }
+}
+
+impl<P> Problem<P> {
+    /// Checks indices and finiteness before a solve, naming the first offender.
+    pub fn validate(&self) -> Result<(), LcpError> {
+        for (index, body) in self.bodies.iter().enumerate() {
+            if !body.is_finite() {
+                return Err(LcpError::NonFiniteBody {
+                    body: BodyId(index),
+                });
+            }
+        }
+        let mut next_row = 0;
+        for (block, b) in self.blocks.iter().enumerate() {
+            let fits = b.rows.start == next_row && b.rows.end <= self.rows.len();
+            let known = b.body_a.0 < self.bodies.len() && b.body_b.0 < self.bodies.len();
+            if !fits || !known {
+                return Err(LcpError::MalformedBlock { block });
+            }
+            if self.rows[b.rows.clone()].iter().any(|r| !r.is_finite()) {
+                return Err(LcpError::NonFinite { block });
+            }
+            next_row = b.rows.end;
+        }
+        if next_row != self.rows.len() {
+            return Err(LcpError::MalformedBlock {
+                block: self.blocks.len(),
+            });
+        }
+        Ok(())
+    }
+}

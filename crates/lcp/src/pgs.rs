@@ -1,0 +1,232 @@
+//! Projected Gauss–Seidel by sequential impulses: prepare → sweep → store.
+//!
+//! Prepare computes, per row, `M⁻¹Jᵀ` (how a unit impulse changes A's and B's velocities) and the
+//! effective mass `m = 1/(J M⁻¹ Jᵀ)`; `A` is never formed. A sweep visits blocks in order and,
+//! in each block, rows in order (the contact models put normal rows first, then friction, then
+//! the face model's torques, as the paper's Springhead does):
+//!
+//! `Δλ = ω m (target − J v)`, `λ += Δλ`, `v += M⁻¹Jᵀ Δλ`,
+//!
+//! then the block's projection maps the block's `λ` back onto its admissible set and whatever it
+//! moved is pushed into the velocities too (see [`crate::Projection`] for why after every row). Each update is O(1), a sweep O(rows). A fixed number of sweeps is run (15,
+//! the paper's), not a tolerance: real-time budgets are fixed.
+//!
+//! Decision record: the projection sees the whole block, not one row, because the face model's
+//! centre of pressure couples three rows (τ₁, τ₂, f₃) and cannot be clamped one row at a time.
+//! Box2D relaxes and warm-starts; Jolt warm-starts; the paper does neither, so both are options
+//! here, off by default.
+
+use nalgebra::Vector3;
+
+use crate::{LcpError, Problem, Projection, SolverBody};
+
+/// PGS sweeps per step. Default [`DEFAULT_ITERATIONS`] = 15 (the paper; Springhead's numIter).
+pub const DEFAULT_ITERATIONS: usize = 15;
+
+/// Successive over-relaxation factor ω. Default [`DEFAULT_RELAXATION`] = 1.0 (plain
+/// Gauss–Seidel, the paper's).
+pub const DEFAULT_RELAXATION: f64 = 1.0;
+
+/// Whether the impulses already in the rows are applied before the first sweep.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum WarmStart {
+    /// Start every solve from zero impulses (the paper's setting).
+    #[default]
+    Off,
+    /// Apply the rows' current impulses first (last step's, carried over by the caller).
+    On,
+}
+
+/// Whether the solve records how much the impulses changed in each sweep.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Record {
+    /// Record nothing (no allocation).
+    #[default]
+    Nothing,
+    /// Record `max |Δλ|` of every sweep in [`PgsInfo::impulse_change`].
+    ImpulseChange,
+}
+
+/// Settings of a PGS solve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PgsParams {
+    /// Sweeps; see [`DEFAULT_ITERATIONS`].
+    pub iterations: usize,
+    /// Relaxation ω in (0, 2); see [`DEFAULT_RELAXATION`].
+    pub relaxation: f64,
+    /// See [`WarmStart`]; off by default, as in the paper.
+    pub warm_start: WarmStart,
+    /// See [`Record`].
+    pub record: Record,
+}
+
+impl Default for PgsParams {
+    fn default() -> Self {
+        Self {
+            iterations: DEFAULT_ITERATIONS,
+            relaxation: DEFAULT_RELAXATION,
+            warm_start: WarmStart::Off,
+            record: Record::Nothing,
+        }
+    }
+}
+
+/// What a solve did.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct PgsInfo {
+    /// Sweeps run.
+    pub sweeps: usize,
+    /// Row updates made (`sweeps × rows`), for throughput figures.
+    pub row_updates: usize,
+    /// `max |Δλ|` per sweep when [`Record::ImpulseChange`] was asked for, else empty.
+    pub impulse_change: Vec<f64>,
+}
+
+/// How a unit impulse on a row changes A's and B's velocities: `M⁻¹Jᵀ`.
+#[derive(Debug, Clone, Copy, Default)]
+struct RowResponse {
+    linear_a: Vector3<f64>,
+    angular_a: Vector3<f64>,
+    linear_b: Vector3<f64>,
+    angular_b: Vector3<f64>,
+    /// `1/(J M⁻¹ Jᵀ)`; 0 for a row no impulse can move (both bodies fixed).
+    effective_mass: f64,
+}
+
+/// Buffers reused across solves so sweeps allocate nothing.
+#[derive(Debug, Clone, Default)]
+pub struct PgsWorkspace {
+    responses: Vec<RowResponse>,
+    block_velocity: Vec<f64>,
+    block_impulse: Vec<f64>,
+    /// The block's impulses as already pushed into the velocities.
+    block_applied: Vec<f64>,
+}
+
+/// Solves `problem` with default parameters and a fresh workspace.
+pub fn solve<P: Projection>(problem: &mut Problem<P>) -> Result<PgsInfo, LcpError> {
+    solve_in_place(problem, &mut PgsWorkspace::default(), &PgsParams::default())
+}
+
+/// Solves `problem` in place: writes impulses into its rows and velocities into its bodies.
+pub fn solve_in_place<P: Projection>(
+    problem: &mut Problem<P>,
+    workspace: &mut PgsWorkspace,
+    params: &PgsParams,
+) -> Result<PgsInfo, LcpError> {
+    problem.validate()?;
+    prepare(problem, workspace, params.warm_start);
+    let mut info = PgsInfo {
+        sweeps: params.iterations,
+        row_updates: params.iterations * problem.rows.len(),
+        impulse_change: Vec::new(),
+    };
+    if params.record == Record::ImpulseChange {
+        info.impulse_change.reserve_exact(params.iterations);
+    }
+    for _ in 0..params.iterations {
+        let change = sweep(problem, workspace, params.relaxation)?;
+        if params.record == Record::ImpulseChange {
+            info.impulse_change.push(change);
+        }
+    }
+    Ok(info)
+}
+
+/// Computes `M⁻¹Jᵀ` and effective masses, and applies or clears the starting impulses.
+fn prepare<P>(problem: &mut Problem<P>, workspace: &mut PgsWorkspace, warm_start: WarmStart) {
+    let Problem {
+        bodies,
+        rows,
+        blocks,
+    } = problem;
+    workspace.responses.clear();
+    workspace
+        .responses
+        .resize(rows.len(), RowResponse::default());
+    let widest = blocks.iter().map(|b| b.rows.len()).max().unwrap_or(0);
+    workspace.block_velocity.resize(widest, 0.0);
+    workspace.block_impulse.resize(widest, 0.0);
+    workspace.block_applied.resize(widest, 0.0);
+    for block in blocks.iter() {
+        let (a, b) = (bodies[block.body_a.0], bodies[block.body_b.0]);
+        for r in block.rows.clone() {
+            let j = &rows[r].jacobian;
+            let mut response = RowResponse {
+                linear_a: j.linear_a * a.inv_mass,
+                angular_a: a.inv_inertia_world * j.angular_a,
+                linear_b: j.linear_b * b.inv_mass,
+                angular_b: b.inv_inertia_world * j.angular_b,
+                effective_mass: 0.0,
+            };
+            let k = j.linear_a.dot(&response.linear_a)
+                + j.angular_a.dot(&response.angular_a)
+                + j.linear_b.dot(&response.linear_b)
+                + j.angular_b.dot(&response.angular_b);
+            response.effective_mass = if k > 0.0 { 1.0 / k } else { 0.0 };
+            workspace.responses[r] = response;
+            match warm_start {
+                WarmStart::On => {
+                    let impulse = rows[r].impulse;
+                    apply(bodies, block.body_a.0, block.body_b.0, &response, impulse);
+                }
+                WarmStart::Off => rows[r].impulse = 0.0,
+            }
+        }
+    }
+}
+
+/// One Gauss–Seidel pass over every block; returns `max |Δλ|` of the pass.
+fn sweep<P: Projection>(
+    problem: &mut Problem<P>,
+    workspace: &mut PgsWorkspace,
+    relaxation: f64,
+) -> Result<f64, LcpError> {
+    let Problem {
+        bodies,
+        rows,
+        blocks,
+    } = problem;
+    let mut largest_change: f64 = 0.0;
+    for (index, block) in blocks.iter_mut().enumerate() {
+        let (ia, ib) = (block.body_a.0, block.body_b.0);
+        let rows = &mut rows[block.rows.clone()];
+        let responses = &workspace.responses[block.rows.clone()];
+        let velocity = &mut workspace.block_velocity[..rows.len()];
+        let impulse = &mut workspace.block_impulse[..rows.len()];
+        let applied = &mut workspace.block_applied[..rows.len()];
+        for (k, row) in rows.iter().enumerate() {
+            impulse[k] = row.impulse;
+            applied[k] = row.impulse;
+        }
+        for k in 0..rows.len() {
+            let w = rows[k].jacobian.velocity(&bodies[ia], &bodies[ib]);
+            velocity[k] = w;
+            impulse[k] += relaxation * responses[k].effective_mass * (rows[k].target - w);
+            block.projection.project(impulse, velocity, k);
+            for j in 0..rows.len() {
+                let delta = impulse[j] - applied[j];
+                if delta != 0.0 {
+                    if !delta.is_finite() {
+                        return Err(LcpError::NonFinite { block: index });
+                    }
+                    apply(bodies, ia, ib, &responses[j], delta);
+                    applied[j] = impulse[j];
+                }
+            }
+        }
+        for (row, &new) in rows.iter_mut().zip(impulse.iter()) {
+            largest_change = largest_change.max((new - row.impulse).abs());
+            row.impulse = new;
+        }
+    }
+    Ok(largest_change)
+}
+
+/// `v += M⁻¹Jᵀ λ` for both bodies of a row.
+fn apply(bodies: &mut [SolverBody], a: usize, b: usize, response: &RowResponse, impulse: f64) {
+    bodies[a].linear_velocity += response.linear_a * impulse;
+    bodies[a].angular_velocity += response.angular_a * impulse;
+    bodies[b].linear_velocity += response.linear_b * impulse;
+    bodies[b].angular_velocity += response.angular_b * impulse;
+}

@@ -1,0 +1,55 @@
+//! One constraint row: a Jacobian between bodies A and B, a target velocity and an impulse.
+
+use nalgebra::Vector3;
+
+use crate::SolverBody;
+
+/// The row's Jacobian: `w = linear_a·v_A + angular_a·ω_A + linear_b·v_B + angular_b·ω_B`.
+///
+/// For a contact the B half is usually the negation of the A half at the same point, so `w` is
+/// the relative velocity of A with respect to B along the row's direction.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Jacobian {
+    /// Coefficient of A's linear velocity.
+    pub linear_a: Vector3<f64>,
+    /// Coefficient of A's angular velocity.
+    pub angular_a: Vector3<f64>,
+    /// Coefficient of B's linear velocity.
+    pub linear_b: Vector3<f64>,
+    /// Coefficient of B's angular velocity.
+    pub angular_b: Vector3<f64>,
+}
+
+impl Jacobian {
+    /// `w = J v` for the bodies' current velocities.
+    pub fn velocity(&self, a: &SolverBody, b: &SolverBody) -> f64 {
+        self.linear_a.dot(&a.linear_velocity)
+            + self.angular_a.dot(&a.angular_velocity)
+            + self.linear_b.dot(&b.linear_velocity)
+            + self.angular_b.dot(&b.angular_velocity)
+    }
+
+    fn is_finite(&self) -> bool {
+        [self.linear_a, self.angular_a, self.linear_b, self.angular_b]
+            .iter()
+            .all(|v| v.iter().all(|x| x.is_finite()))
+    }
+}
+
+/// A constraint row of a block.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Row {
+    /// Jacobian between the block's bodies A and B.
+    pub jacobian: Jacobian,
+    /// Velocity the row drives `w` to, m/s or rad/s: 0 for a resting contact, positive on a
+    /// normal row to push out penetration (the bias) or for restitution.
+    pub target: f64,
+    /// Accumulated impulse `λ`, N s or N m s; written by the solvers, read for warm starting.
+    pub impulse: f64,
+}
+
+impl Row {
+    pub(crate) fn is_finite(&self) -> bool {
+        self.jacobian.is_finite() && self.target.is_finite() && self.impulse.is_finite()
+    }
+}

@@ -1,0 +1,340 @@
+//! The sparse solvers on small contact problems: PGS against the dense form and the direct
+//! solver, closed-form outcomes, warm starting, and errors naming the block.
+
+use nalgebra::{DVector, Matrix3, Vector3};
+use proptest::prelude::*;
+use tatami_lcp::pgs::{self, PgsParams, PgsWorkspace, Record, WarmStart};
+use tatami_lcp::{
+    Block, BodyId, BoundsProjection, Jacobian, LcpError, Problem, Projection, Row, RowBound,
+    SolverBody, dense, direct, pgs_dense,
+};
+
+const G: f64 = 9.8;
+const DT: f64 = 0.01;
+
+fn cube(mass: f64, side: f64, velocity: Vector3<f64>) -> SolverBody {
+    let inertia = mass * side * side / 6.0;
+    SolverBody {
+        inv_mass: 1.0 / mass,
+        inv_inertia_world: Matrix3::identity() / inertia,
+        linear_velocity: velocity,
+        angular_velocity: Vector3::zeros(),
+    }
+}
+
+/// A row of the relative velocity of A (body 1, centre at the origin) against the fixed ground at
+/// the point `r` (relative to A's centre) along `direction`.
+fn point_row(r: Vector3<f64>, direction: Vector3<f64>) -> Row {
+    Row {
+        jacobian: Jacobian {
+            linear_a: direction,
+            angular_a: r.cross(&direction),
+            linear_b: -direction,
+            angular_b: Vector3::zeros(),
+        },
+        target: 0.0,
+        impulse: 0.0,
+    }
+}
+
+/// A 2 m, 1 kg cube on the ground after gravity's step, one 3-row block (normal, t₁, t₂) per
+/// bottom corner: the vertex model's problem.
+fn cube_on_ground(velocity: Vector3<f64>, mu: f64) -> Problem<BoundsProjection> {
+    let mut problem = Problem {
+        bodies: vec![SolverBody::fixed(), cube(1.0, 2.0, velocity)],
+        ..Problem::default()
+    };
+    for (x, y) in [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)] {
+        let r = Vector3::new(x, y, -1.0);
+        let start = problem.rows.len();
+        problem.rows.push(point_row(r, Vector3::z()));
+        problem.rows.push(point_row(r, Vector3::x()));
+        problem.rows.push(point_row(r, Vector3::y()));
+        let friction = RowBound::Friction {
+            normal: 0,
+            coefficient: mu,
+        };
+        problem.blocks.push(Block {
+            body_a: BodyId(1),
+            body_b: BodyId(0),
+            rows: start..start + 3,
+            projection: BoundsProjection(vec![RowBound::NonNegative, friction, friction]),
+        });
+    }
+    problem
+}
+
+fn normal_impulse_sum(problem: &Problem<BoundsProjection>) -> f64 {
+    problem
+        .blocks
+        .iter()
+        .map(|b| problem.rows[b.rows.start].impulse)
+        .sum()
+}
+
+// Exact solves leave only rounding: 1e-12 of the 0.098 m/s gravity step.
+const EXACT: f64 = 1e-12;
+
+#[test]
+fn resting_cube_is_stopped_by_exactly_its_weight() {
+    for solver in ["direct", "pgs"] {
+        let mut problem = cube_on_ground(Vector3::new(0.0, 0.0, -G * DT), 0.5);
+        match solver {
+            "direct" => {
+                direct::solve(&mut problem, &direct::DirectParams::default()).unwrap();
+            }
+            _ => {
+                let params = PgsParams {
+                    iterations: 200,
+                    ..PgsParams::default()
+                };
+                pgs::solve_in_place(&mut problem, &mut PgsWorkspace::default(), &params).unwrap();
+            }
+        }
+        let body = problem.bodies[1];
+        assert!(
+            body.linear_velocity.norm() < EXACT,
+            "{solver}: {}",
+            body.linear_velocity
+        );
+        assert!(
+            body.angular_velocity.norm() < EXACT,
+            "{solver}: {}",
+            body.angular_velocity
+        );
+        assert!(
+            (normal_impulse_sum(&problem) - G * DT).abs() < EXACT,
+            "{solver}"
+        );
+    }
+}
+
+#[test]
+fn sliding_cube_loses_mu_g_dt_of_speed() {
+    // Kinetic friction saturates at every corner: Δv = −μ g Δt along the motion.
+    let mu = 0.5;
+    for solver in ["direct", "pgs"] {
+        let mut problem = cube_on_ground(Vector3::new(1.0, 0.0, -G * DT), mu);
+        match solver {
+            "direct" => {
+                direct::solve(&mut problem, &direct::DirectParams::default()).unwrap();
+            }
+            _ => {
+                let params = PgsParams {
+                    iterations: 200,
+                    ..PgsParams::default()
+                };
+                pgs::solve_in_place(&mut problem, &mut PgsWorkspace::default(), &params).unwrap();
+            }
+        }
+        let v = problem.bodies[1].linear_velocity;
+        assert!((v.x - (1.0 - mu * G * DT)).abs() < 1e-9, "{solver}: {v}");
+        assert!(v.y.abs() < 1e-9 && v.z.abs() < 1e-9, "{solver}: {v}");
+    }
+}
+
+#[test]
+fn pgs_error_against_direct_falls_with_iterations() {
+    let reference = {
+        let mut p = cube_on_ground(Vector3::new(0.3, -0.2, -G * DT), 0.8);
+        p.bodies[1].angular_velocity = Vector3::new(0.1, 0.2, 0.5);
+        direct::solve(&mut p, &direct::DirectParams::default()).unwrap();
+        p.bodies[1]
+    };
+    let error = |iterations: usize| {
+        let mut p = cube_on_ground(Vector3::new(0.3, -0.2, -G * DT), 0.8);
+        p.bodies[1].angular_velocity = Vector3::new(0.1, 0.2, 0.5);
+        let params = PgsParams {
+            iterations,
+            ..PgsParams::default()
+        };
+        pgs::solve_in_place(&mut p, &mut PgsWorkspace::default(), &params).unwrap();
+        (p.bodies[1].linear_velocity - reference.linear_velocity).norm()
+            + (p.bodies[1].angular_velocity - reference.angular_velocity).norm()
+    };
+    let errors: Vec<f64> = [1, 4, 15, 60, 500].iter().map(|&k| error(k)).collect();
+    assert!(
+        errors.windows(2).all(|w| w[1] <= w[0] + 1e-15),
+        "{errors:?}"
+    );
+    assert!(errors[4] < 1e-9, "{errors:?}");
+}
+
+#[test]
+fn recorded_impulse_change_shrinks_and_warm_start_reuses_impulses() {
+    let mut problem = cube_on_ground(Vector3::new(0.0, 0.0, -G * DT), 0.5);
+    let mut workspace = PgsWorkspace::default();
+    let params = PgsParams {
+        iterations: 40,
+        record: Record::ImpulseChange,
+        ..PgsParams::default()
+    };
+    let info = pgs::solve_in_place(&mut problem, &mut workspace, &params).unwrap();
+    assert_eq!(info.impulse_change.len(), 40);
+    assert!(
+        info.impulse_change[39] < 1e-3 * info.impulse_change[0],
+        "{:?}",
+        info.impulse_change
+    );
+    // Same problem again, warm-started from the converged impulses: nothing left to change.
+    let impulses: Vec<f64> = problem.rows.iter().map(|r| r.impulse).collect();
+    let mut again = cube_on_ground(Vector3::new(0.0, 0.0, -G * DT), 0.5);
+    for (row, impulse) in again.rows.iter_mut().zip(&impulses) {
+        row.impulse = *impulse;
+    }
+    let warm = PgsParams {
+        iterations: 1,
+        warm_start: WarmStart::On,
+        record: Record::ImpulseChange,
+        ..params
+    };
+    let info = pgs::solve_in_place(&mut again, &mut workspace, &warm).unwrap();
+    assert!(
+        info.impulse_change[0] < 1e-6 * G * DT,
+        "{:?}",
+        info.impulse_change
+    );
+}
+
+struct PoisonProjection;
+
+impl Projection for PoisonProjection {
+    fn project(&mut self, impulses: &mut [f64], _: &[f64], _: usize) {
+        impulses[0] = f64::NAN;
+    }
+    fn bound(&self, _: usize) -> Option<RowBound> {
+        None
+    }
+}
+
+#[test]
+fn non_finite_values_stop_the_solve_naming_the_block() {
+    let mut problem = cube_on_ground(Vector3::new(0.0, 0.0, -G * DT), 0.5);
+    problem.rows[7].target = f64::NAN; // block 2
+    assert_eq!(
+        pgs::solve(&mut problem).unwrap_err(),
+        LcpError::NonFinite { block: 2 }
+    );
+    assert_eq!(
+        direct::solve(&mut problem, &direct::DirectParams::default()).unwrap_err(),
+        LcpError::NonFinite { block: 2 }
+    );
+
+    let mut problem = Problem {
+        bodies: vec![
+            SolverBody::fixed(),
+            cube(1.0, 2.0, Vector3::new(0.0, 0.0, -1.0)),
+        ],
+        rows: vec![point_row(Vector3::zeros(), Vector3::z())],
+        blocks: vec![Block {
+            body_a: BodyId(1),
+            body_b: BodyId(0),
+            rows: 0..1,
+            projection: PoisonProjection,
+        }],
+    };
+    assert_eq!(
+        pgs::solve(&mut problem).unwrap_err(),
+        LcpError::NonFinite { block: 0 }
+    );
+    assert_eq!(
+        direct::solve(&mut problem, &direct::DirectParams::default()).unwrap_err(),
+        LcpError::Unsupported { block: 0 }
+    );
+    problem.bodies[1].inv_mass = f64::INFINITY;
+    assert_eq!(
+        pgs::solve(&mut problem).unwrap_err(),
+        LcpError::NonFiniteBody { body: BodyId(1) }
+    );
+}
+
+#[test]
+fn malformed_blocks_are_rejected() {
+    let mut problem = cube_on_ground(Vector3::zeros(), 0.5);
+    problem.blocks[1].body_a = BodyId(9);
+    assert_eq!(
+        pgs::solve(&mut problem).unwrap_err(),
+        LcpError::MalformedBlock { block: 1 }
+    );
+}
+
+/// Random bodies and one-row blocks with constant box bounds: one-row blocks make the block
+/// projection a per-row clamp, which is exactly what the dense PGS does.
+fn random_problem() -> impl Strategy<Value = Problem<BoundsProjection>> {
+    let body = (
+        0.1..10.0f64,
+        0.1..10.0f64,
+        prop::array::uniform3(-1.0..1.0f64),
+        prop::array::uniform3(-1.0..1.0f64),
+    )
+        .prop_map(|(m, i, v, w)| SolverBody {
+            inv_mass: 1.0 / m,
+            inv_inertia_world: Matrix3::from_diagonal(&Vector3::new(1.0 / i, 2.0 / i, 0.5 / i)),
+            linear_velocity: Vector3::from(v),
+            angular_velocity: Vector3::from(w),
+        });
+    let row = (
+        0usize..6,
+        0usize..6,
+        prop::array::uniform12(-1.0..1.0f64),
+        -1.0..1.0f64,
+        -2.0..0.0f64,
+        0.0..2.0f64,
+    );
+    (
+        prop::collection::vec(body, 2..6),
+        prop::collection::vec(row, 1..30),
+    )
+        .prop_map(|(bodies, rows)| {
+            let mut problem = Problem {
+                bodies,
+                ..Problem::default()
+            };
+            let n = problem.bodies.len();
+            for (a, b, j, target, lo, hi) in rows {
+                let (a, b) = (a % n, (a + 1 + b % (n - 1)) % n);
+                let start = problem.rows.len();
+                problem.rows.push(Row {
+                    jacobian: Jacobian {
+                        linear_a: Vector3::new(j[0], j[1], j[2]),
+                        angular_a: Vector3::new(j[3], j[4], j[5]),
+                        linear_b: Vector3::new(j[6], j[7], j[8]),
+                        angular_b: Vector3::new(j[9], j[10], j[11]),
+                    },
+                    target,
+                    impulse: 0.0,
+                });
+                problem.blocks.push(Block {
+                    body_a: BodyId(a),
+                    body_b: BodyId(b),
+                    rows: start..start + 1,
+                    projection: BoundsProjection(vec![RowBound::Box { lo, hi }]),
+                });
+            }
+            problem
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
+
+    #[test]
+    fn sparse_and_dense_pgs_give_the_same_impulses(problem in random_problem(), iterations in 1usize..40) {
+        let (a, b) = dense::assemble(&problem);
+        let bounds = |pick: fn(RowBound) -> f64| DVector::from_iterator(
+            problem.blocks.len(),
+            problem.blocks.iter().map(|blk| pick(blk.projection.0[0])),
+        );
+        let lo = bounds(|r| if let RowBound::Box { lo, .. } = r { lo } else { unreachable!() });
+        let hi = bounds(|r| if let RowBound::Box { hi, .. } = r { hi } else { unreachable!() });
+        let dense_z = pgs_dense(&a, &b, &lo, &hi, iterations);
+        let mut sparse = problem.clone();
+        let params = PgsParams { iterations, ..PgsParams::default() };
+        pgs::solve_in_place(&mut sparse, &mut PgsWorkspace::default(), &params).unwrap();
+        for (k, row) in sparse.rows.iter().enumerate() {
+            // The two evaluate the same sums in different orders: rounding only.
+            prop_assert!((row.impulse - dense_z[k]).abs() <= 1e-9 * (1.0 + dense_z[k].abs()),
+                "row {}: sparse {} dense {}", k, row.impulse, dense_z[k]);
+        }
+    }
+}
