@@ -3,8 +3,9 @@
 //! Each bench target builds its scenes from here so that every benchmark of a concept measures
 //! the same input.
 
-use nalgebra::Point2;
+use nalgebra::{DMatrix, DVector, Matrix3, Point2, Vector3};
 use tatami_geometry::ConvexPolygon;
+use tatami_lcp::{Block, BodyId, BoundsProjection, Jacobian, Problem, Row, RowBound, SolverBody};
 
 /// A regular `n`-gon of circumradius `radius` centred at the origin, first vertex on `+x`.
 pub fn regular_polygon(n: usize, radius: f64) -> ConvexPolygon {
@@ -27,4 +28,89 @@ pub fn spiral_queries(count: usize, radius: f64) -> Vec<Point2<f64>> {
             Point2::new(2.0 * radius * s * t.cos(), 2.0 * radius * s * t.sin())
         })
         .collect()
+}
+
+/// A chain of `blocks` 6-row blocks (normal, two friction, twist and two bounded tilt rows, the
+/// shape of a face contact) linking `blocks + 1` unit cubes, the first fixed; every body starts
+/// with gravity's step of velocity so the rows have work to do.
+pub fn chain_problem(blocks: usize) -> Problem<BoundsProjection> {
+    let mut problem = Problem::default();
+    problem.bodies.push(SolverBody::fixed());
+    for _ in 0..blocks {
+        problem.bodies.push(SolverBody {
+            inv_mass: 1.0,
+            inv_inertia_world: Matrix3::identity() * 6.0,
+            linear_velocity: Vector3::new(0.0, 0.0, -0.098),
+            angular_velocity: Vector3::zeros(),
+        });
+    }
+    let axes = [Vector3::z(), Vector3::x(), Vector3::y()];
+    let lever = Vector3::new(0.0, 0.0, -0.5);
+    for k in 0..blocks {
+        let start = problem.rows.len();
+        for axis in axes {
+            problem.rows.push(point_row(lever.cross(&axis), axis));
+        }
+        for axis in [Vector3::z(), Vector3::x(), Vector3::y()] {
+            problem.rows.push(Row {
+                jacobian: Jacobian {
+                    angular_a: axis,
+                    angular_b: -axis,
+                    ..Jacobian::default()
+                },
+                ..Row::default()
+            });
+        }
+        let friction = RowBound::Friction {
+            normal: 0,
+            coefficient: 0.5,
+        };
+        problem.blocks.push(Block {
+            body_a: BodyId(k + 1),
+            body_b: BodyId(k),
+            rows: start..start + 6,
+            projection: BoundsProjection(vec![
+                RowBound::NonNegative,
+                friction,
+                friction,
+                RowBound::Friction {
+                    normal: 0,
+                    coefficient: 0.2,
+                },
+                RowBound::Box { lo: -1.0, hi: 1.0 },
+                RowBound::Box { lo: -1.0, hi: 1.0 },
+            ]),
+        });
+    }
+    problem
+}
+
+fn point_row(angular: Vector3<f64>, axis: Vector3<f64>) -> Row {
+    Row {
+        jacobian: Jacobian {
+            linear_a: axis,
+            angular_a: angular,
+            linear_b: -axis,
+            angular_b: -angular,
+        },
+        ..Row::default()
+    }
+}
+
+/// A deterministic random SPD LCP of size `n`: `A = BᵀB/n + 0.1 I`, `q` in [−1, 1]ⁿ.
+pub fn spd_lcp(n: usize, seed: u64) -> (DMatrix<f64>, DVector<f64>) {
+    let mut state = seed
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407)
+        | 1;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    let b = DMatrix::from_fn(n, n, |_, _| next());
+    let a = b.transpose() * &b / n as f64 + DMatrix::identity(n, n) * 0.1;
+    let q = DVector::from_fn(n, |_, _| next());
+    (a, q)
 }

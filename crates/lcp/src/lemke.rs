@@ -11,7 +11,9 @@
 //!
 //! After the last pivot the basic values are re-solved from the original data with an LU
 //! factorisation of the final basis (faer's partial-pivot LU), removing the round-off that the
-//! pivots accumulated; the polished answer is kept when its residual is smaller.
+//! pivots accumulated; the polished answer is kept when its residual is smaller. The LU is
+//! nalgebra's below [`FAER_LU_FROM`] unknowns and faer's from there on, where each is faster
+//! (figures in the crate README).
 
 use faer::Mat;
 use faer::linalg::solvers::Solve;
@@ -19,6 +21,10 @@ use nalgebra::{DMatrix, DVector};
 
 use crate::LcpError;
 use crate::residual;
+
+/// Size from which faer's partial-pivot LU replaces nalgebra's: measured 4.8× slower than
+/// nalgebra at n = 6 and 2.1× at 24, but 1.7× faster at 96 and 3.7× at 384.
+pub const FAER_LU_FROM: usize = 64;
 
 /// Relative size below which a pivot-column entry is taken as zero.
 const PIVOT_TOLERANCE: f64 = 1e-12;
@@ -209,10 +215,10 @@ impl Tableau {
         z
     }
 
-    /// Re-solves the final basis `B x = q` (columns of `[I | −A]`) with faer's LU.
+    /// Re-solves the final basis `B x = q` (columns of `[I | −A]`) with an LU factorisation.
     fn polish(&self, a: &DMatrix<f64>, q: &DVector<f64>) -> Option<DVector<f64>> {
         let n = self.n;
-        let basis = Mat::<f64>::from_fn(n, n, |i, k| {
+        let basis = DMatrix::from_fn(n, n, |i, k| {
             let v = self.basis[k];
             if v < n {
                 f64::from(u8::from(i == v))
@@ -220,18 +226,28 @@ impl Tableau {
                 -a[(i, v - n)]
             }
         });
-        let rhs = Mat::<f64>::from_fn(n, 1, |i, _| q[i]);
-        let x = basis.partial_piv_lu().solve(&rhs);
+        let x = lu_solve(basis, q)?;
         let mut z = DVector::zeros(n);
         for (k, &v) in self.basis.iter().enumerate() {
-            let value = x[(k, 0)];
-            if !value.is_finite() {
+            if !x[k].is_finite() {
                 return None;
             }
             if v >= n {
-                z[v - n] = value.max(0.0);
+                z[v - n] = x[k].max(0.0);
             }
         }
         Some(z)
     }
+}
+
+/// `m x = rhs` by partial-pivot LU: nalgebra's below [`FAER_LU_FROM`], faer's from there on.
+fn lu_solve(m: DMatrix<f64>, rhs: &DVector<f64>) -> Option<DVector<f64>> {
+    let n = rhs.len();
+    if n < FAER_LU_FROM {
+        return m.lu().solve(rhs);
+    }
+    let m = Mat::<f64>::from_fn(n, n, |i, j| m[(i, j)]);
+    let rhs = Mat::<f64>::from_fn(n, 1, |i, _| rhs[i]);
+    let x = m.partial_piv_lu().solve(&rhs);
+    Some(DVector::from_fn(n, |i, _| x[(i, 0)]))
 }

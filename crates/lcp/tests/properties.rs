@@ -16,9 +16,11 @@ fn config() -> ProptestConfig {
     }
 }
 
-/// `n`, an n×n matrix of entries in [−1, 1] and a vector q in [−1, 1]ⁿ.
-fn raw(max: usize) -> impl Strategy<Value = (DMatrix<f64>, DVector<f64>)> {
-    (1..=max).prop_flat_map(|n| {
+/// For `n` in `sizes`: an n×n matrix of entries in [−1, 1] and a vector q in [−1, 1]ⁿ.
+fn raw(
+    sizes: std::ops::RangeInclusive<usize>,
+) -> impl Strategy<Value = (DMatrix<f64>, DVector<f64>)> {
+    sizes.prop_flat_map(|n| {
         (
             prop::collection::vec(-1.0..1.0f64, n * n)
                 .prop_map(move |v| DMatrix::from_vec(n, n, v)),
@@ -56,7 +58,7 @@ proptest! {
     #![proptest_config(config())]
 
     #[test]
-    fn lemke_solves_spd_problems((b, q) in raw(60)) {
+    fn lemke_solves_spd_problems((b, q) in raw(1..=60)) {
         let a = spd(&b);
         let z = lemke(&a, &q, 20 * q.len() + 10).unwrap();
         let w = &a * &z + &q;
@@ -65,7 +67,17 @@ proptest! {
     }
 
     #[test]
-    fn lemke_solves_p_matrix_problems((b, q) in raw(60)) {
+    fn lemke_solves_large_spd_problems_through_the_faer_polish((b, q) in raw(64..=100)) {
+        // Sizes from lemke::FAER_LU_FROM = 64 on take the faer branch of the final-basis polish.
+        let a = spd(&b);
+        let z = lemke(&a, &q, 20 * q.len() + 10).unwrap();
+        let w = &a * &z + &q;
+        prop_assert!(residual::infeasibility(&z, &w) <= tolerance(&a, &q));
+        prop_assert!(residual::complementarity(&z, &w) <= tolerance(&a, &q));
+    }
+
+    #[test]
+    fn lemke_solves_p_matrix_problems((b, q) in raw(1..=60)) {
         let a = p_matrix(&b);
         let z = lemke(&a, &q, 20 * q.len() + 10).unwrap();
         let w = &a * &z + &q;
@@ -74,7 +86,7 @@ proptest! {
     }
 
     #[test]
-    fn pgs_converges_to_lemke_on_spd_problems((b, q) in raw(30)) {
+    fn pgs_converges_to_lemke_on_spd_problems((b, q) in raw(1..=30)) {
         let a = spd(&b);
         let n = q.len();
         let reference = lemke(&a, &q, 20 * n + 10).unwrap();
@@ -91,7 +103,7 @@ proptest! {
     }
 
     #[test]
-    fn infeasible_problems_end_on_a_ray((b, q) in raw(40), row in 0usize..40) {
+    fn infeasible_problems_end_on_a_ray((b, q) in raw(1..=40), row in 0usize..40) {
         // Row `row` of A ≤ 0 against q_row < 0: w_row < 0 for every z ≥ 0.
         let mut a = p_matrix(&b);
         let n = q.len();
