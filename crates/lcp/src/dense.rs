@@ -73,24 +73,12 @@ pub fn try_pgs_dense(
     hi: &DVector<f64>,
     iterations: usize,
 ) -> Result<DVector<f64>, LcpError> {
+    check_square_system(a, q)?;
     let n = q.len();
-    if a.nrows() != n || a.ncols() != n || lo.len() != n || hi.len() != n {
+    if lo.len() != n || hi.len() != n {
         return Err(LcpError::DimensionMismatch {
-            what: format!(
-                "matrix {}×{}, q {}, lo {}, hi {}",
-                a.nrows(),
-                a.ncols(),
-                n,
-                lo.len(),
-                hi.len()
-            ),
+            what: format!("q has {n} entries but lo {} and hi {}", lo.len(), hi.len()),
         });
-    }
-    if a.iter().any(|x| !x.is_finite()) {
-        return Err(LcpError::NonFiniteInput { what: "matrix" });
-    }
-    if q.iter().any(|x| !x.is_finite()) {
-        return Err(LcpError::NonFiniteInput { what: "vector q" });
     }
     for i in 0..n {
         if lo[i].is_nan() || hi[i].is_nan() || lo[i] > hi[i] {
@@ -112,4 +100,25 @@ pub fn try_pgs_dense(
         }
     }
     Ok(z)
+}
+
+/// Checks that `a` is square, matches `q`, and both are finite.
+pub(crate) fn check_square_system(a: &DMatrix<f64>, q: &DVector<f64>) -> Result<(), LcpError> {
+    let n = q.len();
+    if a.nrows() != n || a.ncols() != n {
+        return Err(LcpError::DimensionMismatch {
+            what: format!(
+                "matrix is {}×{} but q has {n} entries",
+                a.nrows(),
+                a.ncols()
+            ),
+        });
+    }
+    if a.iter().any(|x| !x.is_finite()) {
+        return Err(LcpError::NonFiniteInput { what: "matrix" });
+    }
+    if q.iter().any(|x| !x.is_finite()) {
+        return Err(LcpError::NonFiniteInput { what: "vector q" });
+    }
+    Ok(())
 }
