@@ -51,7 +51,7 @@ pub fn chain_problem(blocks: usize) -> Problem<BoundsProjection> {
         for axis in axes {
             problem.rows.push(point_row(lever.cross(&axis), axis));
         }
-        for axis in [Vector3::z(), Vector3::x(), Vector3::y()] {
+        for axis in axes {
             problem.rows.push(Row {
                 jacobian: Jacobian {
                     angular_a: axis,

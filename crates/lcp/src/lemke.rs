@@ -90,6 +90,8 @@ struct Tableau {
     cells: Vec<f64>,
     basis: Vec<usize>,
     scale: f64,
+    /// Copy of the pivot row, reused so pivots allocate nothing.
+    pivot_row: Vec<f64>,
 }
 
 impl Tableau {
@@ -113,6 +115,7 @@ impl Tableau {
             cells,
             basis: (0..n).collect(),
             scale,
+            pivot_row: vec![0.0; width],
         }
     }
 
@@ -177,11 +180,15 @@ impl Tableau {
         for x in &mut self.cells[row * w..(row + 1) * w] {
             *x /= p;
         }
-        let pivot_row: Vec<f64> = self.cells[row * w..(row + 1) * w].to_vec();
+        self.pivot_row
+            .copy_from_slice(&self.cells[row * w..(row + 1) * w]);
         for i in (0..self.n).filter(|&i| i != row) {
             let factor = self.at(i, column);
             if factor != 0.0 {
-                for (x, y) in self.cells[i * w..(i + 1) * w].iter_mut().zip(&pivot_row) {
+                for (x, y) in self.cells[i * w..(i + 1) * w]
+                    .iter_mut()
+                    .zip(&self.pivot_row)
+                {
                     *x -= factor * y;
                 }
             }

@@ -124,8 +124,8 @@ fn bad_input_is_an_error_not_a_panic() {
 
 #[test]
 fn pgs_dense_solves_a_boxed_problem() {
-    // Unconstrained minimiser of ½zᵀAz + qᵀz is A⁻¹(−q) = (1, 1); the box caps z₂ at 0.5, after
-    // which row 1 gives z₁ = (3 − 0.5)/2... worked out: w₁ = 2z₁ + z₂ − 3 = 0 → z₁ = 1.25.
+    // Without the box, w = 0 gives z = (1, 1). The box caps z₂ at 0.5 (with w₂ = 2·0.5 + z₁ − 3
+    // < 0, as an upper bound requires); then w₁ = 2z₁ + 0.5 − 3 = 0 gives z₁ = 1.25.
     let (a, q) = lcp(2, &[2.0, 1.0, 1.0, 2.0], &[-3.0, -3.0]);
     let lo = DVector::from_vec(vec![0.0, 0.0]);
     let hi = DVector::from_vec(vec![10.0, 0.5]);
