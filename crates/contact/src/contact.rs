@@ -1,0 +1,74 @@
+//! One contact between two bodies, as every contact model sees it.
+
+use nalgebra::Point3;
+use tatami_geometry::ConvexPolygon;
+use tatami_lcp::BodyId;
+
+use crate::{ContactError, ContactFrame, Material};
+
+/// Two touching bodies and the geometry of their contact.
+///
+/// The support polygon lives in the frame's plane coordinates `(t1, t2)` relative to
+/// `frame.origin`; `depths[i]` is the penetration at its vertex `i` along `n` (positive when the
+/// bodies overlap there, negative for a gap the contact may close within the step).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Contact {
+    /// The body pushed along `+n`.
+    pub body_a: BodyId,
+    /// The body pushed along `−n`.
+    pub body_b: BodyId,
+    /// Centre of mass of A (world).
+    pub centre_a: Point3<f64>,
+    /// Centre of mass of B (world).
+    pub centre_b: Point3<f64>,
+    /// Origin and axes.
+    pub frame: ContactFrame,
+    /// Every vertex of the overlap of the two touching features, counter-clockwise from `+n`.
+    pub support: ConvexPolygon,
+    /// Penetration at each support vertex.
+    pub depths: Vec<f64>,
+    /// Combined friction and restitution.
+    pub material: Material,
+}
+
+impl Contact {
+    /// The largest penetration over the support polygon.
+    pub fn depth(&self) -> f64 {
+        self.depths.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    /// Checks that the contact is well formed for a problem with `bodies` bodies.
+    pub fn validate(&self, bodies: usize) -> Result<(), ContactError> {
+        for body in [self.body_a, self.body_b] {
+            if body.0 >= bodies {
+                return Err(ContactError::UnknownBody {
+                    body: body.0,
+                    bodies,
+                });
+            }
+        }
+        let vertices = self.support.vertices().len();
+        if self.depths.len() != vertices {
+            return Err(ContactError::DepthCount {
+                depths: self.depths.len(),
+                vertices,
+            });
+        }
+        if !self.depths.iter().all(|d| d.is_finite()) {
+            return Err(ContactError::NonFinite { what: "depth" });
+        }
+        let centres = self.centre_a.iter().chain(self.centre_b.iter());
+        if !centres.copied().all(f64::is_finite) {
+            return Err(ContactError::NonFinite { what: "centre" });
+        }
+        // Re-validates the frame (a hand-built frame may bypass `from_normal`).
+        let n = self.frame.normal;
+        if !((n.norm() - 1.0).abs() < 1e-9) {
+            return Err(ContactError::InvalidNormal(n.x, n.y, n.z));
+        }
+        if !self.frame.origin.iter().all(|x| x.is_finite()) {
+            return Err(ContactError::NonFinite { what: "origin" });
+        }
+        Ok(())
+    }
+}

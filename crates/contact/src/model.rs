@@ -1,0 +1,51 @@
+//! Choice of contact model.
+
+use tatami_lcp::Problem;
+
+use crate::{Contact, ContactError, ContactProjection, ContactSettings, vertex};
+
+/// Which rows a contact becomes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ContactModel {
+    /// One point constraint (3 rows) per support-polygon vertex.
+    #[default]
+    Vertex,
+}
+
+impl ContactModel {
+    /// Every model, for sweeps and comparisons.
+    pub const ALL: [ContactModel; 1] = [ContactModel::Vertex];
+
+    /// The model's name as scenes and the command line spell it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Vertex => "vertex",
+        }
+    }
+
+    /// The model named `name`, if any.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.name() == name)
+    }
+
+    /// Appends the contact's rows and blocks to `problem`.
+    ///
+    /// The bodies' velocities in `problem` are read as those at the start of the step (before
+    /// external forces): they decide static or kinetic friction and restitution.
+    pub fn build(
+        self,
+        contact: &Contact,
+        dt: f64,
+        settings: &ContactSettings,
+        problem: &mut Problem<ContactProjection>,
+    ) -> Result<(), ContactError> {
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err(ContactError::InvalidTimeStep(dt));
+        }
+        contact.validate(problem.bodies.len())?;
+        match self {
+            Self::Vertex => vertex::build(contact, dt, settings, problem),
+        }
+        Ok(())
+    }
+}

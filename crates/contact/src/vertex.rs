@@ -1,0 +1,56 @@
+//! The vertex model (the paper's baseline, Springhead's `PHContactPoint`): one point constraint
+//! per support-polygon vertex, no torque rows. Each vertex is its own 3-row block
+//! (normal, t1, t2), so a Gauss–Seidel sweep costs O(rows).
+
+use tatami_lcp::{Block, Problem, Row};
+
+use crate::jacobian::{point_jacobian, relative_velocity};
+use crate::target::normal_target;
+use crate::{Contact, ContactProjection, ContactSettings, PointFriction};
+
+/// Rows per support vertex.
+pub const ROWS_PER_VERTEX: usize = 3;
+
+/// Appends one block per support vertex. The contact must be validated.
+pub(crate) fn build(
+    contact: &Contact,
+    dt: f64,
+    settings: &ContactSettings,
+    problem: &mut Problem<ContactProjection>,
+) {
+    let frame = &contact.frame;
+    for (vertex, &depth) in contact.support.vertices().iter().zip(&contact.depths) {
+        let p = frame.to_world(vertex);
+        let v = relative_velocity(contact, &problem.bodies, &p);
+        let normal_speed = v.dot(&frame.normal);
+        let slip = (v - frame.normal * normal_speed).norm();
+        let start = problem.rows.len();
+        let target = normal_target(
+            depth,
+            normal_speed,
+            contact.material.restitution,
+            dt,
+            settings,
+        );
+        for (direction, target) in [
+            (frame.normal, target),
+            (frame.tangent1, 0.0),
+            (frame.tangent2, 0.0),
+        ] {
+            problem.rows.push(Row {
+                jacobian: point_jacobian(contact, &p, &direction),
+                target,
+                impulse: 0.0,
+            });
+        }
+        problem.blocks.push(Block {
+            body_a: contact.body_a,
+            body_b: contact.body_b,
+            rows: start..start + ROWS_PER_VERTEX,
+            projection: ContactProjection::Point(PointFriction {
+                coefficient: contact.material.friction(slip, settings.slip_threshold),
+                cone: settings.friction_cone,
+            }),
+        });
+    }
+}

@@ -1,0 +1,331 @@
+//! Rigid bodies and their description for building a world.
+
+use nalgebra::{Matrix3, Point3, UnitQuaternion, Vector3};
+use tatami_lcp::SolverBody;
+
+use crate::{Shape, WorldError};
+
+/// Density used when a dynamic body gives neither mass nor density: water, 1000 kg/m³.
+pub const DEFAULT_DENSITY: f64 = 1000.0;
+
+/// Friction coefficient when a body gives none.
+pub const DEFAULT_FRICTION: f64 = 0.5;
+
+/// How a body's mass is given.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum MassSpec {
+    /// Total mass (kg).
+    Mass(f64),
+    /// Density (kg/m³); mass is density × volume.
+    Density(f64),
+}
+
+/// Everything needed to add a body to a world (builder style).
+///
+/// ```
+/// use tatami_world::{BodyDesc, Shape};
+/// let cube = BodyDesc::dynamic(Shape::cuboid([2.0, 2.0, 2.0]))
+///     .name("cube")
+///     .mass(1.0)
+///     .position([0.0, 0.0, 1.0])
+///     .friction(0.5);
+/// # let _ = cube;
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodyDesc {
+    /// Name used in errors and trajectories.
+    pub name: Option<String>,
+    /// Collision shape.
+    pub shape: Shape,
+    /// Fixed bodies never move.
+    pub fixed: bool,
+    /// Mass or density.
+    pub mass: MassSpec,
+    /// Principal moments (body axes) about the centre of mass; the solid shape's when `None`.
+    pub inertia: Option<Vector3<f64>>,
+    /// Position of the body's origin (the shape's frame).
+    pub position: Point3<f64>,
+    /// Orientation.
+    pub rotation: UnitQuaternion<f64>,
+    /// Linear velocity of the centre of mass.
+    pub velocity: Vector3<f64>,
+    /// Angular velocity (world axes).
+    pub angular_velocity: Vector3<f64>,
+    /// Static friction coefficient.
+    pub static_friction: f64,
+    /// Kinetic friction coefficient.
+    pub kinetic_friction: f64,
+    /// Restitution coefficient in `[0, 1]`.
+    pub restitution: f64,
+}
+
+impl BodyDesc {
+    /// A dynamic body of density [`DEFAULT_DENSITY`], at rest at the origin.
+    pub fn dynamic(shape: Shape) -> Self {
+        Self {
+            name: None,
+            shape,
+            fixed: false,
+            mass: MassSpec::Density(DEFAULT_DENSITY),
+            inertia: None,
+            position: Point3::origin(),
+            rotation: UnitQuaternion::identity(),
+            velocity: Vector3::zeros(),
+            angular_velocity: Vector3::zeros(),
+            static_friction: DEFAULT_FRICTION,
+            kinetic_friction: DEFAULT_FRICTION,
+            restitution: 0.0,
+        }
+    }
+
+    /// A fixed body.
+    pub fn fixed(shape: Shape) -> Self {
+        Self {
+            fixed: true,
+            ..Self::dynamic(shape)
+        }
+    }
+
+    /// Sets the name.
+    pub fn name(mut self, name: impl Into<String>) -> Self {
+        self.name = Some(name.into());
+        self
+    }
+
+    /// Sets the total mass (kg).
+    pub fn mass(mut self, mass: f64) -> Self {
+        self.mass = MassSpec::Mass(mass);
+        self
+    }
+
+    /// Sets the density (kg/m³).
+    pub fn density(mut self, density: f64) -> Self {
+        self.mass = MassSpec::Density(density);
+        self
+    }
+
+    /// Overrides the principal moments of inertia (body axes, about the centre of mass).
+    pub fn inertia(mut self, moments: [f64; 3]) -> Self {
+        self.inertia = Some(moments.into());
+        self
+    }
+
+    /// Sets the position of the body's origin.
+    pub fn position(mut self, position: [f64; 3]) -> Self {
+        self.position = position.into();
+        self
+    }
+
+    /// Sets the orientation.
+    pub fn rotation(mut self, rotation: UnitQuaternion<f64>) -> Self {
+        self.rotation = rotation;
+        self
+    }
+
+    /// Sets the linear velocity.
+    pub fn velocity(mut self, velocity: [f64; 3]) -> Self {
+        self.velocity = velocity.into();
+        self
+    }
+
+    /// Sets the angular velocity (world axes).
+    pub fn angular_velocity(mut self, angular_velocity: [f64; 3]) -> Self {
+        self.angular_velocity = angular_velocity.into();
+        self
+    }
+
+    /// Sets both friction coefficients.
+    pub fn friction(mut self, mu: f64) -> Self {
+        self.static_friction = mu;
+        self.kinetic_friction = mu;
+        self
+    }
+
+    /// Sets the static and kinetic friction coefficients apart.
+    pub fn friction_pair(mut self, static_friction: f64, kinetic_friction: f64) -> Self {
+        self.static_friction = static_friction;
+        self.kinetic_friction = kinetic_friction;
+        self
+    }
+
+    /// Sets the restitution coefficient.
+    pub fn restitution(mut self, restitution: f64) -> Self {
+        self.restitution = restitution;
+        self
+    }
+}
+
+/// A rigid body in a world. Its state is its centre of mass, orientation and velocities.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Body {
+    name: String,
+    shape: Shape,
+    fixed: bool,
+    mass: f64,
+    inertia_local: Matrix3<f64>,
+    inv_inertia_local: Matrix3<f64>,
+    /// Centre of mass in the body frame.
+    com_offset: Vector3<f64>,
+    pub(crate) centre: Point3<f64>,
+    pub(crate) rotation: UnitQuaternion<f64>,
+    pub(crate) linear_velocity: Vector3<f64>,
+    pub(crate) angular_velocity: Vector3<f64>,
+    pub(crate) static_friction: f64,
+    pub(crate) kinetic_friction: f64,
+    pub(crate) restitution: f64,
+}
+
+impl Body {
+    /// Validates `desc` and builds the body; `index` names unnamed bodies in errors.
+    pub(crate) fn new(desc: BodyDesc, index: usize) -> Result<Self, WorldError> {
+        let name = desc.name.clone().unwrap_or_else(|| format!("#{index}"));
+        let fail = |field: &'static str, reason: String| WorldError::InvalidBody {
+            body: name.clone(),
+            field,
+            reason,
+        };
+        let props = desc
+            .shape
+            .mass_properties()
+            .map_err(|e| fail("shape", e.to_string()))?;
+        let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
+        for (field, values) in [
+            ("position", desc.position.coords.as_slice()),
+            ("velocity", desc.velocity.as_slice()),
+            ("angular_velocity", desc.angular_velocity.as_slice()),
+            ("rotation", desc.rotation.coords.as_slice()),
+        ] {
+            if !finite(values) {
+                return Err(fail(field, format!("must be finite, got {values:?}")));
+            }
+        }
+        for (field, mu) in [
+            ("static_friction", desc.static_friction),
+            ("kinetic_friction", desc.kinetic_friction),
+        ] {
+            if !(mu.is_finite() && mu >= 0.0) {
+                return Err(fail(field, format!("must be finite and ≥ 0, got {mu}")));
+            }
+        }
+        let e = desc.restitution;
+        if !(e.is_finite() && (0.0..=1.0).contains(&e)) {
+            return Err(fail("restitution", format!("must be in [0, 1], got {e}")));
+        }
+        let (field, value, mass) = match desc.mass {
+            MassSpec::Mass(m) => ("mass", m, m),
+            MassSpec::Density(rho) => ("density", rho, rho * props.volume),
+        };
+        if !(value.is_finite() && value > 0.0) {
+            return Err(fail(field, format!("must be finite and > 0, got {value}")));
+        }
+        let inertia_local = match desc.inertia {
+            None => props.unit_inertia * mass,
+            Some(moments) => {
+                if !moments.iter().all(|i| i.is_finite() && *i > 0.0) {
+                    return Err(fail(
+                        "inertia",
+                        format!("moments must be finite and > 0, got {moments:?}"),
+                    ));
+                }
+                Matrix3::from_diagonal(&moments)
+            }
+        };
+        let inv_inertia_local = inertia_local.try_inverse().ok_or_else(|| {
+            fail("inertia", "the inertia tensor is singular".into())
+        })?;
+        let com_offset = props.centre_of_mass.coords;
+        let (linear_velocity, angular_velocity) = if desc.fixed {
+            (Vector3::zeros(), Vector3::zeros())
+        } else {
+            (desc.velocity, desc.angular_velocity)
+        };
+        Ok(Self {
+            name,
+            shape: desc.shape,
+            fixed: desc.fixed,
+            mass,
+            inertia_local,
+            inv_inertia_local,
+            com_offset,
+            centre: desc.position + desc.rotation * com_offset,
+            rotation: desc.rotation,
+            linear_velocity,
+            angular_velocity,
+            static_friction: desc.static_friction,
+            kinetic_friction: desc.kinetic_friction,
+            restitution: desc.restitution,
+        })
+    }
+
+    /// Name (from the description, or `#index`).
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// Collision shape.
+    pub fn shape(&self) -> &Shape {
+        &self.shape
+    }
+
+    /// Whether the body is fixed.
+    pub fn is_fixed(&self) -> bool {
+        self.fixed
+    }
+
+    /// Mass (kg); a fixed body reports its nominal mass but never moves.
+    pub fn mass(&self) -> f64 {
+        self.mass
+    }
+
+    /// Position of the body's origin (the shape's frame).
+    pub fn position(&self) -> Point3<f64> {
+        self.centre - self.rotation * self.com_offset
+    }
+
+    /// Centre of mass (world).
+    pub fn centre_of_mass(&self) -> Point3<f64> {
+        self.centre
+    }
+
+    /// Orientation.
+    pub fn rotation(&self) -> UnitQuaternion<f64> {
+        self.rotation
+    }
+
+    /// Linear velocity of the centre of mass.
+    pub fn linear_velocity(&self) -> Vector3<f64> {
+        self.linear_velocity
+    }
+
+    /// Angular velocity (world axes).
+    pub fn angular_velocity(&self) -> Vector3<f64> {
+        self.angular_velocity
+    }
+
+    /// Inertia tensor about the centre of mass, world axes.
+    pub fn inertia_world(&self) -> Matrix3<f64> {
+        let r = self.rotation.to_rotation_matrix();
+        r.matrix() * self.inertia_local * r.matrix().transpose()
+    }
+
+    /// Kinetic energy, translational plus rotational (J).
+    pub fn kinetic_energy(&self) -> f64 {
+        let w = self.angular_velocity;
+        0.5 * self.mass * self.linear_velocity.norm_squared()
+            + 0.5 * w.dot(&(self.inertia_world() * w))
+    }
+
+    /// The body as the solver sees it (fixed bodies have zero inverse mass and inertia).
+    pub(crate) fn solver_body(&self) -> SolverBody {
+        if self.fixed {
+            return SolverBody::fixed();
+        }
+        let r = self.rotation.to_rotation_matrix();
+        SolverBody {
+            inv_mass: 1.0 / self.mass,
+            inv_inertia_world: r.matrix() * self.inv_inertia_local * r.matrix().transpose(),
+            linear_velocity: self.linear_velocity,
+            angular_velocity: self.angular_velocity,
+        }
+    }
+}

@@ -1,0 +1,108 @@
+//! Collision: broad phase, parry's contact normal, support polygons, and the contacts the
+//! contact models consume. Plain data in, plain data out, so it can be run and timed alone.
+
+use nalgebra::{Point3, Vector3};
+use tatami_contact::{Contact, Material};
+use tatami_lcp::BodyId;
+
+use crate::body::Body;
+use crate::broad_phase::overlapping_pairs;
+use crate::parry_bridge::{self, Collider};
+use crate::support::{Outline, support};
+
+/// Reused buffers of the collision stage.
+#[derive(Debug, Default, Clone)]
+pub(crate) struct CollisionWorkspace {
+    boxes: Vec<(Vector3<f64>, Vector3<f64>)>,
+    is_static: Vec<bool>,
+    order: Vec<usize>,
+    pairs: Vec<(usize, usize)>,
+    feature_a: Vec<Point3<f64>>,
+    feature_b: Vec<Point3<f64>>,
+}
+
+/// A body's collision data, built once when the body is added.
+#[derive(Debug, Clone)]
+pub(crate) struct BodyGeometry {
+    pub collider: Collider,
+    pub outline: Outline,
+}
+
+/// Replaces `contacts` with one contact per touching pair (closer than `margin`).
+pub(crate) fn detect(
+    bodies: &[Body],
+    geometry: &[BodyGeometry],
+    margin: f64,
+    feature_angle: f64,
+    workspace: &mut CollisionWorkspace,
+    contacts: &mut Vec<Contact>,
+) {
+    contacts.clear();
+    let poses: Vec<_> = bodies
+        .iter()
+        .map(|b| parry_bridge::pose(&b.position(), &b.rotation))
+        .collect();
+    workspace.boxes.clear();
+    workspace.boxes.extend(
+        geometry
+            .iter()
+            .zip(&poses)
+            .map(|(g, pose)| g.collider.aabb(pose, margin)),
+    );
+    workspace.is_static.clear();
+    workspace.is_static.extend(bodies.iter().map(Body::is_fixed));
+    overlapping_pairs(
+        &workspace.boxes,
+        &workspace.is_static,
+        &mut workspace.order,
+        &mut workspace.pairs,
+    );
+    for &(i, j) in &workspace.pairs {
+        let (a, b) = (&bodies[i], &bodies[j]);
+        let Some(normal) = parry_bridge::contact_normal(
+            &geometry[i].collider,
+            &poses[i],
+            &geometry[j].collider,
+            &poses[j],
+            margin,
+        ) else {
+            continue;
+        };
+        geometry[i].outline.feature(
+            &a.position(),
+            &a.rotation,
+            &-normal,
+            feature_angle,
+            &mut workspace.feature_a,
+        );
+        geometry[j].outline.feature(
+            &b.position(),
+            &b.rotation,
+            &normal,
+            feature_angle,
+            &mut workspace.feature_b,
+        );
+        let Some(s) = support(&workspace.feature_a, &workspace.feature_b, &normal) else {
+            continue;
+        };
+        contacts.push(Contact {
+            body_a: BodyId(i),
+            body_b: BodyId(j),
+            centre_a: a.centre,
+            centre_b: b.centre,
+            frame: s.frame,
+            support: s.polygon,
+            depths: s.depths,
+            material: combine(a, b),
+        });
+    }
+}
+
+/// The pair's material: the average of the two bodies' coefficients.
+fn combine(a: &Body, b: &Body) -> Material {
+    Material {
+        static_friction: 0.5 * (a.static_friction + b.static_friction),
+        kinetic_friction: 0.5 * (a.kinetic_friction + b.kinetic_friction),
+        restitution: 0.5 * (a.restitution + b.restitution),
+    }
+}

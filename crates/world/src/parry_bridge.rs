@@ -1,0 +1,123 @@
+//! Everything that touches parry3d: its glam types are converted here and nowhere else.
+//!
+//! Parry supplies the collision shapes, bounding boxes, solid mass properties of hulls, and the
+//! contact normal from its SAT/clipping manifold path. The support polygon itself is built by
+//! [`crate::support`] from the shapes' full features, because parry's polygonal features hold at
+//! most four vertices (a cylinder cap becomes a square).
+
+use nalgebra::{Matrix3, Point3, UnitQuaternion, Vector3};
+use parry3d_f64::math::{Pose, Rotation, Vector};
+use parry3d_f64::query::{ContactManifold, DefaultQueryDispatcher, PersistentQueryDispatcher};
+use parry3d_f64::shape::{ConvexPolyhedron, SharedShape};
+
+use crate::shape::{MassProperties, Shape};
+
+fn to_glam(v: &Vector3<f64>) -> Vector {
+    Vector::new(v.x, v.y, v.z)
+}
+
+fn from_glam(v: Vector) -> Vector3<f64> {
+    Vector3::new(v.x, v.y, v.z)
+}
+
+/// A body's collision shape placed in the world.
+#[derive(Clone)]
+pub(crate) struct Collider {
+    shape: SharedShape,
+}
+
+impl std::fmt::Debug for Collider {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Collider").finish_non_exhaustive()
+    }
+}
+
+/// Where a collider is: the pose of the shape's frame (the body's origin, not its centre of mass).
+pub(crate) fn pose(origin: &Point3<f64>, rotation: &UnitQuaternion<f64>) -> Pose {
+    let q = rotation.quaternion();
+    Pose::from_parts(
+        to_glam(&origin.coords),
+        Rotation::from_xyzw(q.i, q.j, q.k, q.w),
+    )
+}
+
+impl Collider {
+    /// The parry shape of a valid `shape`; `None` if parry cannot build it (a flat hull).
+    pub(crate) fn new(shape: &Shape) -> Option<Self> {
+        let shape = match shape {
+            Shape::Box { half_extents: h } => SharedShape::cuboid(h.x, h.y, h.z),
+            Shape::Sphere { radius } => SharedShape::ball(*radius),
+            Shape::Convex { points } => SharedShape::convex_hull(&glam_points(points))?,
+        };
+        Some(Self { shape })
+    }
+
+    /// World bounding box at `pose`, grown by `margin`.
+    pub(crate) fn aabb(&self, pose: &Pose, margin: f64) -> (Vector3<f64>, Vector3<f64>) {
+        let aabb = self.shape.compute_aabb(pose);
+        let grow = Vector3::repeat(margin);
+        (from_glam(aabb.mins) - grow, from_glam(aabb.maxs) + grow)
+    }
+
+    /// Vertices of a polyhedral shape's hull in its frame; `None` for a curved shape.
+    pub(crate) fn hull_vertices(&self) -> Option<Vec<Vector3<f64>>> {
+        if let Some(cuboid) = self.shape.as_cuboid() {
+            let h = from_glam(cuboid.half_extents);
+            let corners = (0..8).map(|i: u8| {
+                let s = |bit: u8| if i & bit == 0 { -1.0 } else { 1.0 };
+                Vector3::new(s(1) * h.x, s(2) * h.y, s(4) * h.z)
+            });
+            return Some(corners.collect());
+        }
+        let hull = self.shape.as_convex_polyhedron()?;
+        Some(hull.points().iter().map(|p| from_glam(*p)).collect())
+    }
+}
+
+/// The unit contact normal between two colliders from parry's contact manifold, pointing from
+/// `b` into `a`, when they are closer than `prediction`.
+pub(crate) fn contact_normal(
+    a: &Collider,
+    pose_a: &Pose,
+    b: &Collider,
+    pose_b: &Pose,
+    prediction: f64,
+) -> Option<Vector3<f64>> {
+    let pos_ba = pose_b.inverse() * *pose_a;
+    let mut manifolds: Vec<ContactManifold<(), ()>> = Vec::new();
+    DefaultQueryDispatcher
+        .contact_manifolds(
+            &pos_ba,
+            &*b.shape,
+            &*a.shape,
+            prediction,
+            &mut manifolds,
+            &mut None,
+        )
+        .ok()?;
+    let manifold = manifolds.iter().find(|m| !m.points.is_empty())?;
+    let normal = from_glam(pose_b.rotation * manifold.local_n1);
+    let length = normal.norm();
+    (length.is_finite() && length > 0.0).then(|| normal / length)
+}
+
+fn glam_points(points: &[Point3<f64>]) -> Vec<Vector> {
+    points.iter().map(|p| to_glam(&p.coords)).collect()
+}
+
+/// Volume, centroid and unit-mass inertia of the hull of `points`; `None` without volume.
+pub(crate) fn convex_mass_properties(points: &[Point3<f64>]) -> Option<MassProperties> {
+    let hull = ConvexPolyhedron::from_convex_hull(&glam_points(points))?;
+    let unit_density = parry3d_f64::shape::Shape::mass_properties(&hull, 1.0);
+    let volume = unit_density.mass();
+    if !(volume.is_finite() && volume > 0.0) {
+        return None;
+    }
+    let inertia = unit_density.reconstruct_inertia_matrix();
+    let columns = [inertia.x_axis, inertia.y_axis, inertia.z_axis].map(from_glam);
+    Some(MassProperties {
+        volume,
+        centre_of_mass: from_glam(unit_density.local_com).into(),
+        unit_inertia: Matrix3::from_columns(&columns) / volume,
+    })
+}

@@ -1,0 +1,104 @@
+//! World settings: contact model, solver, contact tuning, collision tolerances.
+
+use tatami_contact::{ContactModel, ContactSettings};
+use tatami_lcp::direct::DirectParams;
+use tatami_lcp::pgs::PgsParams;
+
+use crate::WorldError;
+
+/// Which solver a step calls.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Solver {
+    /// Projected Gauss–Seidel (sequential impulses), the default.
+    Pgs(PgsParams),
+    /// The pivoting direct solver (dense, exact; for reference and comparison).
+    Direct(DirectParams),
+}
+
+impl Default for Solver {
+    fn default() -> Self {
+        Self::Pgs(PgsParams::default())
+    }
+}
+
+/// Everything a step needs besides the bodies and gravity.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WorldSettings {
+    /// How contacts become rows.
+    pub model: ContactModel,
+    /// How the rows are solved.
+    pub solver: Solver,
+    /// Bias, slop, restitution threshold, friction switching and cone.
+    pub contact: ContactSettings,
+    /// Bodies closer than this (m) get a contact, so a resting gap is closed without bouncing.
+    pub contact_margin: f64,
+    /// Faces tilted by less than this (rad) from the contact plane count as flat, so a resting
+    /// face keeps its full support polygon.
+    pub feature_angle: f64,
+}
+
+impl Default for WorldSettings {
+    fn default() -> Self {
+        Self {
+            model: ContactModel::default(),
+            solver: Solver::default(),
+            contact: ContactSettings::default(),
+            contact_margin: 0.005,
+            feature_angle: 1f64.to_radians(),
+        }
+    }
+}
+
+impl WorldSettings {
+    /// Checks every number is finite and in range.
+    pub fn validate(&self) -> Result<(), WorldError> {
+        let check = |field: &'static str, value: f64, ok: bool, range: &str| {
+            if value.is_finite() && ok {
+                Ok(())
+            } else {
+                Err(WorldError::InvalidSettings {
+                    field,
+                    reason: format!("must be {range}, got {value}"),
+                })
+            }
+        };
+        let c = &self.contact;
+        check("bias_rate", c.bias_rate, (0.0..=1.0).contains(&c.bias_rate), "in [0, 1]")?;
+        check("slop", c.slop, c.slop >= 0.0, "≥ 0")?;
+        check(
+            "restitution_threshold",
+            c.restitution_threshold,
+            c.restitution_threshold >= 0.0,
+            "≥ 0",
+        )?;
+        check("slip_threshold", c.slip_threshold, c.slip_threshold >= 0.0, "≥ 0")?;
+        check(
+            "contact_margin",
+            self.contact_margin,
+            self.contact_margin >= 0.0,
+            "≥ 0",
+        )?;
+        let angle = self.feature_angle;
+        check(
+            "feature_angle",
+            angle,
+            angle > 0.0 && angle < std::f64::consts::FRAC_PI_4,
+            "in (0, π/4) rad",
+        )?;
+        if let Solver::Pgs(p) = &self.solver {
+            if p.iterations == 0 {
+                return Err(WorldError::InvalidSettings {
+                    field: "iterations",
+                    reason: "must be ≥ 1, got 0".into(),
+                });
+            }
+            check(
+                "relaxation",
+                p.relaxation,
+                p.relaxation > 0.0 && p.relaxation < 2.0,
+                "in (0, 2)",
+            )?;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,145 @@
+//! Collision shapes and their solid mass properties.
+
+use nalgebra::{Matrix3, Point3, Vector3};
+
+use crate::WorldError;
+use crate::parry_bridge;
+
+/// The shape of a body, in its body frame (centred on the body's origin).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Shape {
+    /// A box with the given half edge lengths along the body's axes.
+    Box {
+        /// Half of each edge length (m).
+        half_extents: Vector3<f64>,
+    },
+    /// A ball.
+    Sphere {
+        /// Radius (m).
+        radius: f64,
+    },
+    /// The convex hull of the given points.
+    Convex {
+        /// Points in the body frame; interior points are allowed and ignored.
+        points: Vec<Point3<f64>>,
+    },
+}
+
+/// Volume, centre of mass and inertia of a solid shape of unit mass.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MassProperties {
+    /// Volume (m³).
+    pub volume: f64,
+    /// Centre of mass in the body frame.
+    pub centre_of_mass: Point3<f64>,
+    /// Inertia tensor per unit mass about the centre of mass, body axes (m²).
+    pub unit_inertia: Matrix3<f64>,
+}
+
+impl Shape {
+    /// A box from its full edge lengths.
+    pub fn cuboid(size: [f64; 3]) -> Self {
+        Self::Box {
+            half_extents: Vector3::from(size) / 2.0,
+        }
+    }
+
+    /// A ball of the given radius.
+    pub fn sphere(radius: f64) -> Self {
+        Self::Sphere { radius }
+    }
+
+    /// The convex hull of `points`.
+    pub fn convex(points: Vec<Point3<f64>>) -> Self {
+        Self::Convex { points }
+    }
+
+    /// The shape's name as scenes spell it.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Self::Box { .. } => "box",
+            Self::Sphere { .. } => "sphere",
+            Self::Convex { .. } => "convex",
+        }
+    }
+
+    /// Mass properties of the solid shape, or why the shape is invalid (a size not finite and
+    /// positive, a hull without volume).
+    pub fn mass_properties(&self) -> Result<MassProperties, WorldError> {
+        let invalid = |what: &str, value: f64| WorldError::InvalidShape {
+            reason: format!("{what} must be finite and > 0, got {value}"),
+        };
+        match self {
+            Self::Box { half_extents: h } => {
+                if let Some(&bad) = h.iter().find(|h| !(h.is_finite() && **h > 0.0)) {
+                    return Err(invalid("box size", 2.0 * bad));
+                }
+                let (x2, y2, z2) = (h.x * h.x, h.y * h.y, h.z * h.z);
+                Ok(MassProperties {
+                    volume: 8.0 * h.x * h.y * h.z,
+                    centre_of_mass: Point3::origin(),
+                    unit_inertia: Matrix3::from_diagonal(&Vector3::new(y2 + z2, x2 + z2, x2 + y2))
+                        / 3.0,
+                })
+            }
+            Self::Sphere { radius: r } => {
+                if !(r.is_finite() && *r > 0.0) {
+                    return Err(invalid("sphere radius", *r));
+                }
+                Ok(MassProperties {
+                    volume: 4.0 / 3.0 * std::f64::consts::PI * r.powi(3),
+                    centre_of_mass: Point3::origin(),
+                    unit_inertia: Matrix3::identity() * (0.4 * r * r),
+                })
+            }
+            Self::Convex { points } => {
+                if let Some(p) = points.iter().find(|p| !p.iter().all(|x| x.is_finite())) {
+                    return Err(WorldError::InvalidShape {
+                        reason: format!("convex point ({}, {}, {}) is not finite", p.x, p.y, p.z),
+                    });
+                }
+                parry_bridge::convex_mass_properties(points).ok_or_else(|| {
+                    WorldError::InvalidShape {
+                        reason: format!(
+                            "the hull of {} points has no volume (needs 4 points not on one plane)",
+                            points.len()
+                        ),
+                    }
+                })
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn convex_cube_matches_the_box_closed_form() {
+        let corners: Vec<_> = (0..8)
+            .map(|i| {
+                let s = |bit: usize| if i & bit == 0 { -1.0 } else { 1.0 };
+                Point3::new(s(1) + 3.0, s(2), s(4))
+            })
+            .collect();
+        let hull = Shape::convex(corners).mass_properties().unwrap();
+        let cube = Shape::cuboid([2.0, 2.0, 2.0]).mass_properties().unwrap();
+        assert!((hull.volume - cube.volume).abs() < 1e-12);
+        assert!((hull.centre_of_mass - Point3::new(3.0, 0.0, 0.0)).norm() < 1e-12);
+        assert!((hull.unit_inertia - cube.unit_inertia).norm() < 1e-12);
+    }
+
+    #[test]
+    fn degenerate_and_non_finite_shapes_are_rejected() {
+        assert!(Shape::cuboid([1.0, 0.0, 1.0]).mass_properties().is_err());
+        assert!(Shape::sphere(f64::NAN).mass_properties().is_err());
+        let flat = vec![
+            Point3::new(0.0, 0.0, 0.0),
+            Point3::new(1.0, 0.0, 0.0),
+            Point3::new(0.0, 1.0, 0.0),
+            Point3::new(1.0, 1.0, 0.0),
+        ];
+        assert!(Shape::convex(flat).mass_properties().is_err());
+    }
+}

@@ -1,0 +1,308 @@
+//! The support polygon of a touching pair: the overlap of the two bodies' touching features on
+//! the contact plane, with every vertex kept, and the penetration at each vertex.
+//!
+//! Each body's feature is the set of its hull vertices within a small angle of the extreme along
+//! the contact normal (a face, an edge or a corner; a sphere's is its lowest point). Both
+//! features are projected on the plane, turned into convex polygons by the geometry crate, and
+//! clipped against each other (Sutherland–Hodgman; a segment is clipped parametrically). A
+//! 45°-twisted box on a box therefore gives an octagon, an edge a segment, a corner a point.
+
+use nalgebra::{Matrix3, Point2, Point3, UnitQuaternion, Vector3};
+use tatami_contact::ContactFrame;
+use tatami_geometry::{ConvexPolygon, PolygonKind, signed_area};
+
+/// What of a body's surface can touch: hull vertices, or a ball.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Outline {
+    /// Hull vertices relative to the body's origin (body axes), and the largest distance of one
+    /// from the origin.
+    Polyhedron {
+        /// Vertices in the body frame.
+        vertices: Vec<Vector3<f64>>,
+        /// Largest vertex distance from the origin, which scales the feature tolerance.
+        radius: f64,
+    },
+    /// A ball centred on the body's origin.
+    Sphere {
+        /// Its radius.
+        radius: f64,
+    },
+}
+
+impl Outline {
+    /// The outline of a polyhedron from its hull vertices.
+    pub(crate) fn polyhedron(vertices: Vec<Vector3<f64>>) -> Self {
+        let radius = vertices.iter().map(|v| v.norm()).fold(0.0, f64::max);
+        Self::Polyhedron { vertices, radius }
+    }
+
+    /// World points of the feature furthest along `direction`: every vertex within
+    /// `radius · sin(angle)` of the extreme (so faces tilted by less than `angle` count as flat).
+    pub(crate) fn feature(
+        &self,
+        origin: &Point3<f64>,
+        rotation: &UnitQuaternion<f64>,
+        direction: &Vector3<f64>,
+        angle: f64,
+        out: &mut Vec<Point3<f64>>,
+    ) {
+        out.clear();
+        match self {
+            Self::Sphere { radius } => out.push(origin + direction * *radius),
+            Self::Polyhedron { vertices, radius } => {
+                let local = rotation.inverse_transform_vector(direction);
+                let extreme = vertices
+                    .iter()
+                    .map(|v| v.dot(&local))
+                    .fold(f64::NEG_INFINITY, f64::max);
+                let tolerance = radius * angle.sin();
+                out.extend(
+                    vertices
+                        .iter()
+                        .filter(|v| v.dot(&local) >= extreme - tolerance)
+                        .map(|v| origin + rotation * v),
+                );
+            }
+        }
+    }
+}
+
+/// A support polygon with its frame and per-vertex depths.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Support {
+    pub frame: ContactFrame,
+    pub polygon: ConvexPolygon,
+    pub depths: Vec<f64>,
+}
+
+/// The support polygon of A's `feature_a` resting on B's `feature_b`, with `normal` (unit) from B
+/// into A. `None` only if a feature is empty or not finite.
+pub(crate) fn support(
+    feature_a: &[Point3<f64>],
+    feature_b: &[Point3<f64>],
+    normal: &Vector3<f64>,
+) -> Option<Support> {
+    let (a0, b0) = (feature_a.first()?, feature_b.first()?);
+    let frame = ContactFrame::from_normal(nalgebra::center(a0, b0), *normal).ok()?;
+    let surface_a = Surface::fit(&frame, feature_a)?;
+    let surface_b = Surface::fit(&frame, feature_b)?;
+    let mut points = overlap(&surface_a.outline, &surface_b.outline);
+    if points.is_empty() {
+        // Touching only at the boundary within rounding: the nearest point of A's outline.
+        points.push(
+            surface_a
+                .outline
+                .nearest_point(&surface_b.outline.centroid()),
+        );
+    }
+    let polygon = ConvexPolygon::from_points(&points).ok()?;
+    let depths = polygon
+        .vertices()
+        .iter()
+        .map(|p| surface_b.height(p) - surface_a.height(p))
+        .collect();
+    Some(Support {
+        frame,
+        polygon,
+        depths,
+    })
+}
+
+/// A feature seen from the contact plane: its outline and its height above the plane as an
+/// affine function `h = c₀ + c₁ x + c₂ y` (least squares over its points; exact for a face).
+struct Surface {
+    outline: ConvexPolygon,
+    coefficients: Vector3<f64>,
+}
+
+impl Surface {
+    fn fit(frame: &ContactFrame, feature: &[Point3<f64>]) -> Option<Self> {
+        let plane: Vec<Point2<f64>> = feature.iter().map(|p| frame.to_plane(p)).collect();
+        let outline = ConvexPolygon::from_points(&plane).ok()?;
+        let heights = feature.iter().map(|p| (p - frame.origin).dot(&frame.normal));
+        let mean_height = heights.clone().sum::<f64>() / feature.len() as f64;
+        let coefficients = match outline.kind() {
+            PolygonKind::Point => Vector3::new(mean_height, 0.0, 0.0),
+            PolygonKind::Segment | PolygonKind::Polygon => {
+                // Least squares in coordinates centred on the centroid; along a segment only the
+                // slope along it is determined, so the normal matrix gets a tiny ridge.
+                let c = outline.centroid();
+                let mut normal_matrix = Matrix3::zeros();
+                let mut rhs = Vector3::zeros();
+                for (p, h) in plane.iter().zip(heights) {
+                    let row = Vector3::new(1.0, p.x - c.x, p.y - c.y);
+                    normal_matrix += row * row.transpose();
+                    rhs += row * h;
+                }
+                let ridge = 1e-12 * normal_matrix.trace();
+                let solved = (normal_matrix + Matrix3::identity() * ridge)
+                    .lu()
+                    .solve(&rhs)?;
+                Vector3::new(
+                    solved.x - solved.y * c.x - solved.z * c.y,
+                    solved.y,
+                    solved.z,
+                )
+            }
+        };
+        Some(Self {
+            outline,
+            coefficients,
+        })
+    }
+
+    fn height(&self, p: &Point2<f64>) -> f64 {
+        self.coefficients.dot(&Vector3::new(1.0, p.x, p.y))
+    }
+}
+
+/// The overlap of two convex outlines (points, segments or polygons), as unordered points.
+fn overlap(a: &ConvexPolygon, b: &ConvexPolygon) -> Vec<Point2<f64>> {
+    match (a.kind(), b.kind()) {
+        (PolygonKind::Point, _) => a.vertices().to_vec(),
+        (_, PolygonKind::Point) => b.vertices().to_vec(),
+        (PolygonKind::Polygon, PolygonKind::Polygon) => clip_polygon(a.vertices(), b.vertices()),
+        (PolygonKind::Segment, PolygonKind::Polygon) => clip_segment(a.vertices(), b.vertices()),
+        (PolygonKind::Polygon, PolygonKind::Segment) => clip_segment(b.vertices(), a.vertices()),
+        (PolygonKind::Segment, PolygonKind::Segment) => segment_overlap(a, b),
+    }
+}
+
+/// Sutherland–Hodgman: `subject` clipped by each edge of the counter-clockwise `clip`.
+fn clip_polygon(subject: &[Point2<f64>], clip: &[Point2<f64>]) -> Vec<Point2<f64>> {
+    let mut current = subject.to_vec();
+    let mut next = Vec::with_capacity(subject.len() + clip.len());
+    for (i, c0) in clip.iter().enumerate() {
+        let c1 = &clip[(i + 1) % clip.len()];
+        next.clear();
+        for (j, p) in current.iter().enumerate() {
+            let q = &current[(j + 1) % current.len()];
+            let (sp, sq) = (signed_area(c0, c1, p), signed_area(c0, c1, q));
+            if sp >= 0.0 {
+                next.push(*p);
+            }
+            if (sp >= 0.0) != (sq >= 0.0) {
+                next.push(p + (q - p) * (sp / (sp - sq)));
+            }
+        }
+        std::mem::swap(&mut current, &mut next);
+        if current.is_empty() {
+            break;
+        }
+    }
+    current
+}
+
+/// The part of segment `s` inside the counter-clockwise polygon `clip` (Cyrus–Beck).
+fn clip_segment(s: &[Point2<f64>], clip: &[Point2<f64>]) -> Vec<Point2<f64>> {
+    let (p, q) = (s[0], s[1]);
+    let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+    for (i, c0) in clip.iter().enumerate() {
+        let c1 = &clip[(i + 1) % clip.len()];
+        let (sp, sq) = (signed_area(c0, c1, &p), signed_area(c0, c1, &q));
+        if sp < 0.0 && sq < 0.0 {
+            return Vec::new();
+        }
+        if sp < 0.0 {
+            t0 = t0.max(sp / (sp - sq));
+        } else if sq < 0.0 {
+            t1 = t1.min(sp / (sp - sq));
+        }
+    }
+    if t0 > t1 {
+        return Vec::new();
+    }
+    vec![p + (q - p) * t0, p + (q - p) * t1]
+}
+
+/// Two segments: their common part when (nearly) parallel, else their crossing point.
+fn segment_overlap(a: &ConvexPolygon, b: &ConvexPolygon) -> Vec<Point2<f64>> {
+    let (a0, a1) = (a.vertices()[0], a.vertices()[1]);
+    let (b0, b1) = (b.vertices()[0], b.vertices()[1]);
+    let (da, db) = (a1 - a0, b1 - b0);
+    let cross = da.perp(&db);
+    // Parallel within about a degree: the edges lie along each other.
+    if cross.abs() <= 0.02 * da.norm() * db.norm() {
+        let length2 = da.norm_squared();
+        let (mut u0, mut u1) = ((b0 - a0).dot(&da) / length2, (b1 - a0).dot(&da) / length2);
+        if u0 > u1 {
+            std::mem::swap(&mut u0, &mut u1);
+        }
+        let (lo, hi) = (u0.max(0.0), u1.min(1.0));
+        if lo > hi {
+            return Vec::new();
+        }
+        return vec![a0 + da * lo, a0 + da * hi];
+    }
+    let t = (b0 - a0).perp(&db) / cross;
+    let u = (b0 - a0).perp(&da) / cross;
+    if (0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&u) {
+        vec![a0 + da * t]
+    } else {
+        Vec::new()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square(half: f64, angle: f64, z: f64) -> Vec<Point3<f64>> {
+        let r = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), angle);
+        [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+            .iter()
+            .map(|&(x, y)| Point3::from(r * Vector3::new(x * half, y * half, z)))
+            .collect()
+    }
+
+    #[test]
+    fn twisted_squares_overlap_in_a_regular_octagon() {
+        let a = square(1.0, std::f64::consts::FRAC_PI_4, 0.0);
+        let b = square(1.0, 0.0, 0.0);
+        let s = support(&a, &b, &Vector3::z()).unwrap();
+        assert_eq!(s.polygon.vertices().len(), 8);
+        // Regular octagon with inradius 1: area 8 tan(π/8).
+        let expected = 8.0 * (std::f64::consts::PI / 8.0).tan();
+        assert!((s.polygon.area() - expected).abs() < 1e-12);
+        assert!(s.depths.iter().all(|d| d.abs() < 1e-12));
+    }
+
+    #[test]
+    fn depth_follows_a_tilted_face() {
+        // A's face dips 1 cm below B's top at x = +1 and sits 1 cm above at x = −1.
+        let a: Vec<_> = square(1.0, 0.0, 0.0)
+            .into_iter()
+            .map(|p| Point3::new(p.x, p.y, -0.01 * p.x))
+            .collect();
+        let b = square(2.0, 0.0, 0.0);
+        let s = support(&a, &b, &Vector3::z()).unwrap();
+        for (v, d) in s.polygon.vertices().iter().zip(&s.depths) {
+            let world = s.frame.to_world(v);
+            assert!((d - 0.01 * world.x).abs() < 1e-9, "depth {d} at x = {}", world.x);
+        }
+    }
+
+    #[test]
+    fn an_edge_across_a_face_gives_the_clipped_segment() {
+        let a = vec![Point3::new(-3.0, 0.5, 0.0), Point3::new(3.0, 0.5, 0.0)];
+        let b = square(1.0, 0.0, 0.0);
+        let s = support(&a, &b, &Vector3::z()).unwrap();
+        assert_eq!(s.polygon.kind(), PolygonKind::Segment);
+        let ends: Vec<_> = s.polygon.vertices().iter().map(|v| s.frame.to_world(v)).collect();
+        let xs = {
+            let mut xs: Vec<f64> = ends.iter().map(|p| p.x).collect();
+            xs.sort_by(f64::total_cmp);
+            xs
+        };
+        assert!((xs[0] + 1.0).abs() < 1e-12 && (xs[1] - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn crossing_edges_meet_in_a_point() {
+        let a = vec![Point3::new(-1.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0)];
+        let b = vec![Point3::new(0.25, -1.0, 0.0), Point3::new(0.25, 1.0, 0.0)];
+        let s = support(&a, &b, &Vector3::z()).unwrap();
+        assert_eq!(s.polygon.kind(), PolygonKind::Point);
+        assert!((s.frame.to_world(&s.polygon.vertices()[0]) - Point3::new(0.25, 0.0, 0.0)).norm() < 1e-12);
+    }
+}

@@ -1,0 +1,23 @@
+//! Wall-clock time of each stage of a step, so callers can time the solver alone.
+
+use std::time::Duration;
+
+/// Time spent in each stage of the last step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct StepTimings {
+    /// Broad phase, narrow phase and support polygons.
+    pub collision: Duration,
+    /// Contact rows and solver bodies.
+    pub setup: Duration,
+    /// The solver call alone.
+    pub solve: Duration,
+    /// Velocities back to bodies, positions and orientations advanced.
+    pub integrate: Duration,
+}
+
+impl StepTimings {
+    /// Sum of the stages.
+    pub fn total(&self) -> Duration {
+        self.collision + self.setup + self.solve + self.integrate
+    }
+}

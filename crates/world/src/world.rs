@@ -1,0 +1,281 @@
+//! The world: bodies, settings, and the step `collision → rows → solve → integrate`.
+
+use std::ops::Range;
+use std::time::Instant;
+
+use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+use tatami_contact::{Contact, ContactProjection};
+use tatami_lcp::pgs::{self, PgsWorkspace};
+use tatami_lcp::{LcpError, Problem, direct};
+
+use crate::collision::{self, BodyGeometry, CollisionWorkspace};
+use crate::parry_bridge::Collider;
+use crate::support::Outline;
+use crate::{Body, BodyDesc, Solver, StepError, StepTimings, WorldBuilder, WorldError, WorldSettings};
+
+/// A rigid-body world.
+///
+/// ```
+/// use tatami_world::{BodyDesc, Shape, World};
+/// let mut world = World::builder()
+///     .body(BodyDesc::fixed(Shape::cuboid([40.0, 40.0, 2.0])).position([0.0, 0.0, -1.0]))
+///     .body(BodyDesc::dynamic(Shape::cuboid([2.0, 2.0, 2.0])).mass(1.0).position([0.0, 0.0, 1.0]))
+///     .build()?;
+/// for _ in 0..100 {
+///     world.step(0.01)?;
+/// }
+/// let cube = &world.bodies()[1];
+/// assert!((cube.position().z - 1.0).abs() < 0.003, "rests on the floor");
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Debug, Clone)]
+pub struct World {
+    pub(crate) gravity: Vector3<f64>,
+    pub(crate) settings: WorldSettings,
+    bodies: Vec<Body>,
+    geometry: Vec<BodyGeometry>,
+    contacts: Vec<Contact>,
+    problem: Problem<ContactProjection>,
+    /// Blocks of `problem` belonging to each contact.
+    contact_blocks: Vec<Range<usize>>,
+    collision_workspace: CollisionWorkspace,
+    pgs_workspace: PgsWorkspace,
+    timings: StepTimings,
+    time: f64,
+    steps: usize,
+}
+
+impl World {
+    /// Starts building a world: gravity `(0, 0, −9.8)`, default settings, no bodies.
+    pub fn builder() -> WorldBuilder {
+        WorldBuilder::default()
+    }
+
+    pub(crate) fn empty(gravity: Vector3<f64>, settings: WorldSettings) -> Self {
+        Self {
+            gravity,
+            settings,
+            bodies: Vec::new(),
+            geometry: Vec::new(),
+            contacts: Vec::new(),
+            problem: Problem::default(),
+            contact_blocks: Vec::new(),
+            collision_workspace: CollisionWorkspace::default(),
+            pgs_workspace: PgsWorkspace::default(),
+            timings: StepTimings::default(),
+            time: 0.0,
+            steps: 0,
+        }
+    }
+
+    /// Adds a body; returns its index in [`World::bodies`].
+    pub fn add_body(&mut self, desc: BodyDesc) -> Result<usize, WorldError> {
+        let index = self.bodies.len();
+        let body = Body::new(desc, index)?;
+        let collider = Collider::new(body.shape()).ok_or_else(|| WorldError::InvalidBody {
+            body: body.name().to_owned(),
+            field: "shape",
+            reason: "the collision library cannot build this shape".into(),
+        })?;
+        let outline = match (body.shape(), collider.hull_vertices()) {
+            (crate::Shape::Sphere { radius }, _) => Outline::Sphere { radius: *radius },
+            (_, Some(vertices)) => Outline::polyhedron(vertices),
+            (_, None) => {
+                return Err(WorldError::InvalidBody {
+                    body: body.name().to_owned(),
+                    field: "shape",
+                    reason: "the shape has no hull vertices".into(),
+                });
+            }
+        };
+        self.bodies.push(body);
+        self.geometry.push(BodyGeometry { collider, outline });
+        Ok(index)
+    }
+
+    /// The bodies, in the order they were added.
+    pub fn bodies(&self) -> &[Body] {
+        &self.bodies
+    }
+
+    /// The body named `name`, if any.
+    pub fn body(&self, name: &str) -> Option<&Body> {
+        self.bodies.iter().find(|b| b.name() == name)
+    }
+
+    /// Gravity (m/s²).
+    pub fn gravity(&self) -> Vector3<f64> {
+        self.gravity
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &WorldSettings {
+        &self.settings
+    }
+
+    /// Replaces the settings after checking them.
+    pub fn set_settings(&mut self, settings: WorldSettings) -> Result<(), WorldError> {
+        settings.validate()?;
+        self.settings = settings;
+        Ok(())
+    }
+
+    /// Contacts found by the last step (at the start of that step's positions).
+    pub fn contacts(&self) -> &[Contact] {
+        &self.contacts
+    }
+
+    /// The last step's constraint problem, with the solved impulses in its rows.
+    pub fn problem(&self) -> &Problem<ContactProjection> {
+        &self.problem
+    }
+
+    /// The blocks of [`World::problem`] that belong to contact `index` of [`World::contacts`].
+    pub fn contact_blocks(&self, index: usize) -> Range<usize> {
+        self.contact_blocks[index].clone()
+    }
+
+    /// Time spent in each stage of the last step.
+    pub fn timings(&self) -> StepTimings {
+        self.timings
+    }
+
+    /// Simulated time (s).
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Steps taken.
+    pub fn steps(&self) -> usize {
+        self.steps
+    }
+
+    /// Kinetic plus gravitational potential energy of the dynamic bodies (J), potential zero at
+    /// the origin.
+    pub fn total_energy(&self) -> f64 {
+        self.bodies
+            .iter()
+            .filter(|b| !b.is_fixed())
+            .map(|b| b.kinetic_energy() - b.mass() * self.gravity.dot(&b.centre.coords))
+            .sum()
+    }
+
+    /// Advances the world by `dt` seconds.
+    pub fn step(&mut self, dt: f64) -> Result<(), StepError> {
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err(StepError::InvalidTimeStep(dt));
+        }
+        let start = Instant::now();
+        collision::detect(
+            &self.bodies,
+            &self.geometry,
+            self.settings.contact_margin,
+            self.settings.feature_angle,
+            &mut self.collision_workspace,
+            &mut self.contacts,
+        );
+        let collided = Instant::now();
+        self.build_problem(dt)?;
+        let built = Instant::now();
+        self.solve()?;
+        let solved = Instant::now();
+        self.integrate(dt)?;
+        let integrated = Instant::now();
+        self.timings = StepTimings {
+            collision: collided - start,
+            setup: built - collided,
+            solve: solved - built,
+            integrate: integrated - solved,
+        };
+        self.time += dt;
+        self.steps += 1;
+        Ok(())
+    }
+
+    /// Contact rows from the velocities at the start of the step, then gravity's impulse.
+    fn build_problem(&mut self, dt: f64) -> Result<(), StepError> {
+        let problem = &mut self.problem;
+        problem.bodies.clear();
+        problem.bodies.extend(self.bodies.iter().map(Body::solver_body));
+        problem.rows.clear();
+        problem.blocks.clear();
+        self.contact_blocks.clear();
+        for contact in &self.contacts {
+            let first = problem.blocks.len();
+            self.settings
+                .model
+                .build(contact, dt, &self.settings.contact, problem)
+                .map_err(|source| StepError::Contact {
+                    pair: pair_name(&self.bodies, contact),
+                    source,
+                })?;
+            self.contact_blocks.push(first..problem.blocks.len());
+        }
+        for (solver_body, body) in problem.bodies.iter_mut().zip(&self.bodies) {
+            if !body.is_fixed() {
+                solver_body.linear_velocity += self.gravity * dt;
+            }
+        }
+        Ok(())
+    }
+
+    fn solve(&mut self) -> Result<(), StepError> {
+        let result = match &self.settings.solver {
+            Solver::Pgs(params) => {
+                pgs::solve_in_place(&mut self.problem, &mut self.pgs_workspace, params).map(drop)
+            }
+            Solver::Direct(params) => direct::solve(&mut self.problem, params).map(drop),
+        };
+        result.map_err(|source| StepError::Solver {
+            pair: self.contact_of_error(&source),
+            source,
+        })
+    }
+
+    /// The contact a solver error names through its block, if any.
+    fn contact_of_error(&self, error: &LcpError) -> Option<String> {
+        let block = match error {
+            LcpError::NonFinite { block }
+            | LcpError::MalformedBlock { block }
+            | LcpError::Unsupported { block } => *block,
+            _ => return None,
+        };
+        let index = self
+            .contact_blocks
+            .iter()
+            .position(|blocks| blocks.contains(&block))?;
+        Some(pair_name(&self.bodies, &self.contacts[index]))
+    }
+
+    /// Semi-implicit Euler: the solved velocities move the bodies; quaternions renormalised.
+    fn integrate(&mut self, dt: f64) -> Result<(), StepError> {
+        for (body, solved) in self.bodies.iter().zip(&self.problem.bodies) {
+            if !body.is_fixed() && !solved.is_finite() {
+                return Err(StepError::NonFiniteState {
+                    body: body.name().to_owned(),
+                });
+            }
+        }
+        for (body, solved) in self.bodies.iter_mut().zip(&self.problem.bodies) {
+            if body.is_fixed() {
+                continue;
+            }
+            body.linear_velocity = solved.linear_velocity;
+            body.angular_velocity = solved.angular_velocity;
+            body.centre += body.linear_velocity * dt;
+            let q = body.rotation.into_inner();
+            let spin = Quaternion::from_imag(body.angular_velocity) * q * (0.5 * dt);
+            body.rotation = UnitQuaternion::new_normalize(q + spin);
+        }
+        Ok(())
+    }
+}
+
+/// `a–b` from the contact's body names.
+fn pair_name(bodies: &[Body], contact: &Contact) -> String {
+    format!(
+        "{}–{}",
+        bodies[contact.body_a.0].name(),
+        bodies[contact.body_b.0].name()
+    )
+}
