@@ -1,5 +1,6 @@
 //! Choice of contact model.
 
+use nalgebra::Point3;
 use tatami_lcp::Problem;
 
 use crate::{Contact, ContactError, ContactProjection, ContactSettings, vertex};
@@ -47,5 +48,20 @@ impl ContactModel {
             Self::Vertex => vertex::build(contact, dt, settings, problem),
         }
         Ok(())
+    }
+
+    /// The world point each block of [`ContactModel::build`] acts at, in block order: what a
+    /// solver matches between steps to warm-start a block with its previous impulses.
+    pub fn anchors(self, contact: &Contact, out: &mut Vec<Point3<f64>>) {
+        out.clear();
+        match self {
+            Self::Vertex => out.extend(
+                contact
+                    .support
+                    .vertices()
+                    .iter()
+                    .map(|v| contact.frame.to_world(v)),
+            ),
+        }
     }
 }

@@ -16,6 +16,7 @@ mod settings;
 mod shape;
 mod support;
 mod timings;
+mod warm_start;
 mod world;
 
 pub use body::{Body, BodyDesc, DEFAULT_DENSITY, DEFAULT_FRICTION, MassSpec};
@@ -24,5 +25,8 @@ pub use error::{StepError, WorldError};
 pub use settings::{Solver, WorldSettings};
 pub use shape::{MassProperties, Shape};
 pub use tatami_contact::{ContactModel, ContactSettings, FrictionCone};
+pub use tatami_lcp::direct::DirectParams;
+pub use tatami_lcp::pgs::{PgsParams, WarmStart};
 pub use timings::StepTimings;
+pub use warm_start::MATCH_RADIUS;
 pub use world::World;

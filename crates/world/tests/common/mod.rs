@@ -1,0 +1,54 @@
+//! Scenes shared by the world's tests: a large fixed floor and 2 m cubes.
+
+#![allow(dead_code)] // each test binary uses a subset
+
+use nalgebra::{UnitQuaternion, Vector3};
+use tatami_world::{BodyDesc, Shape, World, WorldBuilder};
+
+/// Edge of the paper's cubes (m).
+pub const SIDE: f64 = 2.0;
+/// Gravity (m/s²).
+pub const G: f64 = 9.8;
+/// Time step (s).
+pub const DT: f64 = 0.01;
+
+/// A 40 m × 40 m × 2 m fixed floor whose top face is the plane z = 0.
+pub fn floor() -> BodyDesc {
+    BodyDesc::fixed(Shape::cuboid([40.0, 40.0, 2.0]))
+        .name("floor")
+        .position([0.0, 0.0, -1.0])
+}
+
+/// A 1 kg cube of side [`SIDE`] with its centre at `centre`.
+pub fn cube(name: &str, centre: [f64; 3]) -> BodyDesc {
+    BodyDesc::dynamic(Shape::cuboid([SIDE; 3]))
+        .name(name)
+        .mass(1.0)
+        .position(centre)
+}
+
+/// Rotation by `degrees` about `axis`.
+pub fn rotation(axis: [f64; 3], degrees: f64) -> UnitQuaternion<f64> {
+    UnitQuaternion::from_axis_angle(
+        &nalgebra::Unit::new_normalize(Vector3::from(axis)),
+        degrees.to_radians(),
+    )
+}
+
+/// A floor and one cube resting flat on it.
+pub fn resting_cube(builder: WorldBuilder) -> World {
+    builder
+        .body(floor())
+        .body(cube("cube", [0.0, 0.0, SIDE / 2.0]))
+        .build()
+        .unwrap()
+}
+
+/// Steps `world` for `seconds` at [`DT`], calling `each` after every step.
+pub fn run(world: &mut World, seconds: f64, mut each: impl FnMut(&World)) {
+    let steps = (seconds / DT).round() as usize;
+    for _ in 0..steps {
+        world.step(DT).unwrap();
+        each(world);
+    }
+}

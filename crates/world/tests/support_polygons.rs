@@ -1,0 +1,96 @@
+//! Support polygons of box–box contacts keep every vertex of the overlap.
+
+mod common;
+
+use common::{DT, SIDE, cube, floor, rotation};
+use tatami_geometry::PolygonKind;
+use tatami_world::World;
+
+/// The contacts found at the start of one step of the floor and `body`.
+fn contacts_with_floor(body: tatami_world::BodyDesc) -> Vec<tatami_contact::Contact> {
+    let mut world = World::builder().body(floor()).body(body).build().unwrap();
+    world.step(DT).unwrap();
+    world.contacts().to_vec()
+}
+
+#[test]
+fn a_cube_flat_on_the_floor_gives_its_square_face() {
+    let contacts = contacts_with_floor(cube("cube", [0.0, 0.0, SIDE / 2.0]));
+    assert_eq!(contacts.len(), 1);
+    let c = &contacts[0];
+    assert_eq!(c.support.vertices().len(), 4);
+    assert!((c.support.area() - SIDE * SIDE).abs() < 1e-9);
+    assert!((c.frame.normal.z.abs() - 1.0).abs() < 1e-12);
+}
+
+#[test]
+fn a_cube_twisted_45_degrees_on_a_cube_gives_an_octagon() {
+    let mut world = World::builder()
+        .body(floor())
+        .body(cube("base", [0.0, 0.0, 1.0]))
+        .body(cube("top", [0.0, 0.0, 3.0]).rotation(rotation([0.0, 0.0, 1.0], 45.0)))
+        .build()
+        .unwrap();
+    world.step(DT).unwrap();
+    let between = world
+        .contacts()
+        .iter()
+        .find(|c| c.body_a.0 == 1 && c.body_b.0 == 2)
+        .expect("a contact between the cubes");
+    assert_eq!(between.support.vertices().len(), 8);
+    // A regular octagon of inradius 1: area 8 tan(π/8).
+    let expected = 8.0 * (std::f64::consts::PI / 8.0).tan();
+    assert!((between.support.area() - expected).abs() < 1e-9);
+}
+
+#[test]
+fn a_cube_on_an_edge_gives_a_segment() {
+    let centre = [0.0, 0.0, SIDE / std::f64::consts::SQRT_2];
+    let contacts = contacts_with_floor(cube("cube", centre).rotation(rotation([0.0, 1.0, 0.0], 45.0)));
+    assert_eq!(contacts.len(), 1);
+    let s = &contacts[0].support;
+    assert_eq!(s.kind(), PolygonKind::Segment);
+    assert!(((s.vertices()[0] - s.vertices()[1]).norm() - SIDE).abs() < 1e-9);
+}
+
+#[test]
+fn a_cube_on_a_corner_gives_a_point() {
+    // Turn the body diagonal (1, 1, 1) onto the vertical: one corner points straight down.
+    let diagonal = nalgebra::Vector3::new(1.0, 1.0, 1.0).normalize();
+    let tilt = nalgebra::UnitQuaternion::rotation_between(&diagonal, &nalgebra::Vector3::z()).unwrap();
+    let centre = [0.0, 0.0, SIDE * 3f64.sqrt() / 2.0];
+    let contacts = contacts_with_floor(cube("cube", centre).rotation(tilt));
+    assert_eq!(contacts.len(), 1);
+    assert_eq!(contacts[0].support.kind(), PolygonKind::Point);
+    let corner = contacts[0].frame.to_world(&contacts[0].support.vertices()[0]);
+    assert!(corner.x.abs() < 1e-9 && corner.y.abs() < 1e-9 && corner.z.abs() < 1e-9);
+}
+
+#[test]
+fn nearly_aligned_stacked_cubes_get_a_vertical_normal_and_a_shallow_depth() {
+    // Two cubes on top of each other, 1 mm of overlap, the upper one turned by a hair.
+    for twist in [0.0, 1e-6, 1e-3, 0.5] {
+        let mut world = World::builder()
+            .body(floor())
+            .body(cube("base", [0.0, 0.0, 1.0]))
+            .body(
+                cube("top", [1e-4, -2e-4, 2.999])
+                    .rotation(rotation([0.3, 0.2, 1.0], twist)),
+            )
+            .build()
+            .unwrap();
+        world.step(DT).unwrap();
+        let c = world
+            .contacts()
+            .iter()
+            .find(|c| c.body_a.0 == 1 && c.body_b.0 == 2)
+            .expect("a contact between the cubes");
+        // The normal is one of the two faces' normals: within the top cube's tilt of vertical.
+        let tilt = (world.bodies()[2].rotation() * nalgebra::Vector3::z()).z.acos();
+        let off_vertical = c.frame.normal.z.abs().min(1.0).acos();
+        assert!(off_vertical <= tilt + 1e-9, "twist {twist}: normal {:?}", c.frame.normal);
+        let depth = c.depth();
+        assert!(depth > 0.0 && depth < 0.01, "twist {twist}: depth {depth}");
+        assert!(c.support.area() > 0.9 * SIDE * SIDE, "twist {twist}: area {}", c.support.area());
+    }
+}
