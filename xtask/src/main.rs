@@ -1,1 +1,40 @@
-fn main() {}
+//! `cargo xtask …`: Tatami's task runner.
+//!
+//! - `cargo xtask simulate <scene.json> …` runs a scene and writes its trajectory CSV.
+//!
+//! Errors are printed as one line on stderr with a non-zero exit status.
+
+mod simulate;
+mod trajectory;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// Tatami's task runner.
+#[derive(Debug, Parser)]
+#[command(name = "cargo xtask", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Run a scene file and write its trajectory as CSV.
+    Simulate(simulate::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Simulate(args) => simulate::run(&args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

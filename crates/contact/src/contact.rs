@@ -34,7 +34,10 @@ pub struct Contact {
 impl Contact {
     /// The largest penetration over the support polygon.
     pub fn depth(&self) -> f64 {
-        self.depths.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+        self.depths
+            .iter()
+            .copied()
+            .fold(f64::NEG_INFINITY, f64::max)
     }
 
     /// Checks that the contact is well formed for a problem with `bodies` bodies.
@@ -63,7 +66,8 @@ impl Contact {
         }
         // Re-validates the frame (a hand-built frame may bypass `from_normal`).
         let n = self.frame.normal;
-        if !((n.norm() - 1.0).abs() < 1e-9) {
+        let unit = (n.norm() - 1.0).abs() < 1e-9;
+        if !unit {
             return Err(ContactError::InvalidNormal(n.x, n.y, n.z));
         }
         if !self.frame.origin.iter().all(|x| x.is_finite()) {

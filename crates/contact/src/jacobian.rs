@@ -6,7 +6,11 @@ use tatami_lcp::{Jacobian, SolverBody};
 use crate::Contact;
 
 /// The row measuring the velocity of A relative to B at world point `p` along `direction`.
-pub(crate) fn point_jacobian(contact: &Contact, p: &Point3<f64>, direction: &Vector3<f64>) -> Jacobian {
+pub(crate) fn point_jacobian(
+    contact: &Contact,
+    p: &Point3<f64>,
+    direction: &Vector3<f64>,
+) -> Jacobian {
     Jacobian {
         linear_a: *direction,
         angular_a: (p - contact.centre_a).cross(direction),

@@ -60,7 +60,10 @@ mod tests {
         let mut impulses = [2.0, 3.0, 4.0];
         p.project(&mut impulses, &[0.0; 3], 1);
         assert!((impulses[1].hypot(impulses[2]) - 1.0).abs() < 1e-12);
-        assert!((impulses[1] / impulses[2] - 0.75).abs() < 1e-12, "direction kept");
+        assert!(
+            (impulses[1] / impulses[2] - 0.75).abs() < 1e-12,
+            "direction kept"
+        );
     }
 
     #[test]

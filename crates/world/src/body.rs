@@ -148,6 +148,11 @@ impl BodyDesc {
         self
     }
 
+    /// Checks the description as [`World::add_body`](crate::World::add_body) would.
+    pub fn validate(&self) -> Result<(), WorldError> {
+        Body::new(self.clone(), 0).map(drop)
+    }
+
     /// Sets the restitution coefficient.
     pub fn restitution(mut self, restitution: f64) -> Self {
         self.restitution = restitution;
@@ -230,9 +235,9 @@ impl Body {
                 Matrix3::from_diagonal(&moments)
             }
         };
-        let inv_inertia_local = inertia_local.try_inverse().ok_or_else(|| {
-            fail("inertia", "the inertia tensor is singular".into())
-        })?;
+        let inv_inertia_local = inertia_local
+            .try_inverse()
+            .ok_or_else(|| fail("inertia", "the inertia tensor is singular".into()))?;
         let com_offset = props.centre_of_mass.coords;
         let (linear_velocity, angular_velocity) = if desc.fixed {
             (Vector3::zeros(), Vector3::zeros())

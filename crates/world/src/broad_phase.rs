@@ -48,7 +48,10 @@ mod tests {
     use super::*;
 
     /// Every overlapping pair, by checking all of them.
-    fn brute_force(boxes: &[(Vector3<f64>, Vector3<f64>)], is_static: &[bool]) -> Vec<(usize, usize)> {
+    fn brute_force(
+        boxes: &[(Vector3<f64>, Vector3<f64>)],
+        is_static: &[bool],
+    ) -> Vec<(usize, usize)> {
         let mut pairs = Vec::new();
         for i in 0..boxes.len() {
             for j in i + 1..boxes.len() {
@@ -67,7 +70,9 @@ mod tests {
         // A deterministic scatter of boxes of mixed sizes, some static.
         let mut state = 12345_u64;
         let mut next = || {
-            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             (state >> 11) as f64 / (1u64 << 53) as f64
         };
         let mut boxes = Vec::new();

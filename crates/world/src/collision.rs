@@ -50,7 +50,9 @@ pub(crate) fn detect(
             .map(|(g, pose)| g.collider.aabb(pose, margin)),
     );
     workspace.is_static.clear();
-    workspace.is_static.extend(bodies.iter().map(Body::is_fixed));
+    workspace
+        .is_static
+        .extend(bodies.iter().map(Body::is_fixed));
     overlapping_pairs(
         &workspace.boxes,
         &workspace.is_static,

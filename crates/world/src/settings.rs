@@ -63,7 +63,12 @@ impl WorldSettings {
             }
         };
         let c = &self.contact;
-        check("bias_rate", c.bias_rate, (0.0..=1.0).contains(&c.bias_rate), "in [0, 1]")?;
+        check(
+            "bias_rate",
+            c.bias_rate,
+            (0.0..=1.0).contains(&c.bias_rate),
+            "in [0, 1]",
+        )?;
         check("slop", c.slop, c.slop >= 0.0, "≥ 0")?;
         check(
             "restitution_threshold",
@@ -71,7 +76,12 @@ impl WorldSettings {
             c.restitution_threshold >= 0.0,
             "≥ 0",
         )?;
-        check("slip_threshold", c.slip_threshold, c.slip_threshold >= 0.0, "≥ 0")?;
+        check(
+            "slip_threshold",
+            c.slip_threshold,
+            c.slip_threshold >= 0.0,
+            "≥ 0",
+        )?;
         check(
             "contact_margin",
             self.contact_margin,

@@ -119,7 +119,9 @@ impl Surface {
     fn fit(frame: &ContactFrame, feature: &[Point3<f64>]) -> Option<Self> {
         let plane: Vec<Point2<f64>> = feature.iter().map(|p| frame.to_plane(p)).collect();
         let outline = ConvexPolygon::from_points(&plane).ok()?;
-        let heights = feature.iter().map(|p| (p - frame.origin).dot(&frame.normal));
+        let heights = feature
+            .iter()
+            .map(|p| (p - frame.origin).dot(&frame.normal));
         let mean_height = heights.clone().sum::<f64>() / feature.len() as f64;
         let coefficients = match outline.kind() {
             PolygonKind::Point => Vector3::new(mean_height, 0.0, 0.0),
@@ -278,7 +280,11 @@ mod tests {
         let s = support(&a, &b, &Vector3::z()).unwrap();
         for (v, d) in s.polygon.vertices().iter().zip(&s.depths) {
             let world = s.frame.to_world(v);
-            assert!((d - 0.01 * world.x).abs() < 1e-9, "depth {d} at x = {}", world.x);
+            assert!(
+                (d - 0.01 * world.x).abs() < 1e-9,
+                "depth {d} at x = {}",
+                world.x
+            );
         }
     }
 
@@ -288,7 +294,12 @@ mod tests {
         let b = square(1.0, 0.0, 0.0);
         let s = support(&a, &b, &Vector3::z()).unwrap();
         assert_eq!(s.polygon.kind(), PolygonKind::Segment);
-        let ends: Vec<_> = s.polygon.vertices().iter().map(|v| s.frame.to_world(v)).collect();
+        let ends: Vec<_> = s
+            .polygon
+            .vertices()
+            .iter()
+            .map(|v| s.frame.to_world(v))
+            .collect();
         let xs = {
             let mut xs: Vec<f64> = ends.iter().map(|p| p.x).collect();
             xs.sort_by(f64::total_cmp);
@@ -303,6 +314,9 @@ mod tests {
         let b = vec![Point3::new(0.25, -1.0, 0.0), Point3::new(0.25, 1.0, 0.0)];
         let s = support(&a, &b, &Vector3::z()).unwrap();
         assert_eq!(s.polygon.kind(), PolygonKind::Point);
-        assert!((s.frame.to_world(&s.polygon.vertices()[0]) - Point3::new(0.25, 0.0, 0.0)).norm() < 1e-12);
+        assert!(
+            (s.frame.to_world(&s.polygon.vertices()[0]) - Point3::new(0.25, 0.0, 0.0)).norm()
+                < 1e-12
+        );
     }
 }

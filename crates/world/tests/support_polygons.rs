@@ -46,7 +46,8 @@ fn a_cube_twisted_45_degrees_on_a_cube_gives_an_octagon() {
 #[test]
 fn a_cube_on_an_edge_gives_a_segment() {
     let centre = [0.0, 0.0, SIDE / std::f64::consts::SQRT_2];
-    let contacts = contacts_with_floor(cube("cube", centre).rotation(rotation([0.0, 1.0, 0.0], 45.0)));
+    let contacts =
+        contacts_with_floor(cube("cube", centre).rotation(rotation([0.0, 1.0, 0.0], 45.0)));
     assert_eq!(contacts.len(), 1);
     let s = &contacts[0].support;
     assert_eq!(s.kind(), PolygonKind::Segment);
@@ -57,12 +58,15 @@ fn a_cube_on_an_edge_gives_a_segment() {
 fn a_cube_on_a_corner_gives_a_point() {
     // Turn the body diagonal (1, 1, 1) onto the vertical: one corner points straight down.
     let diagonal = nalgebra::Vector3::new(1.0, 1.0, 1.0).normalize();
-    let tilt = nalgebra::UnitQuaternion::rotation_between(&diagonal, &nalgebra::Vector3::z()).unwrap();
+    let tilt =
+        nalgebra::UnitQuaternion::rotation_between(&diagonal, &nalgebra::Vector3::z()).unwrap();
     let centre = [0.0, 0.0, SIDE * 3f64.sqrt() / 2.0];
     let contacts = contacts_with_floor(cube("cube", centre).rotation(tilt));
     assert_eq!(contacts.len(), 1);
     assert_eq!(contacts[0].support.kind(), PolygonKind::Point);
-    let corner = contacts[0].frame.to_world(&contacts[0].support.vertices()[0]);
+    let corner = contacts[0]
+        .frame
+        .to_world(&contacts[0].support.vertices()[0]);
     assert!(corner.x.abs() < 1e-9 && corner.y.abs() < 1e-9 && corner.z.abs() < 1e-9);
 }
 
@@ -73,10 +77,7 @@ fn nearly_aligned_stacked_cubes_get_a_vertical_normal_and_a_shallow_depth() {
         let mut world = World::builder()
             .body(floor())
             .body(cube("base", [0.0, 0.0, 1.0]))
-            .body(
-                cube("top", [1e-4, -2e-4, 2.999])
-                    .rotation(rotation([0.3, 0.2, 1.0], twist)),
-            )
+            .body(cube("top", [1e-4, -2e-4, 2.999]).rotation(rotation([0.3, 0.2, 1.0], twist)))
             .build()
             .unwrap();
         world.step(DT).unwrap();
@@ -86,11 +87,21 @@ fn nearly_aligned_stacked_cubes_get_a_vertical_normal_and_a_shallow_depth() {
             .find(|c| c.body_a.0 == 1 && c.body_b.0 == 2)
             .expect("a contact between the cubes");
         // The normal is one of the two faces' normals: within the top cube's tilt of vertical.
-        let tilt = (world.bodies()[2].rotation() * nalgebra::Vector3::z()).z.acos();
+        let tilt = (world.bodies()[2].rotation() * nalgebra::Vector3::z())
+            .z
+            .acos();
         let off_vertical = c.frame.normal.z.abs().min(1.0).acos();
-        assert!(off_vertical <= tilt + 1e-9, "twist {twist}: normal {:?}", c.frame.normal);
+        assert!(
+            off_vertical <= tilt + 1e-9,
+            "twist {twist}: normal {:?}",
+            c.frame.normal
+        );
         let depth = c.depth();
         assert!(depth > 0.0 && depth < 0.01, "twist {twist}: depth {depth}");
-        assert!(c.support.area() > 0.9 * SIDE * SIDE, "twist {twist}: area {}", c.support.area());
+        assert!(
+            c.support.area() > 0.9 * SIDE * SIDE,
+            "twist {twist}: area {}",
+            c.support.area()
+        );
     }
 }

@@ -12,7 +12,11 @@ fn a_resting_cube_stays_put_for_ten_seconds() {
     let start = world.bodies()[1].position();
     let mut deepest: f64 = 0.0;
     run(&mut world, 10.0, |w| {
-        deepest = w.contacts().iter().map(|c| c.depth()).fold(deepest, f64::max);
+        deepest = w
+            .contacts()
+            .iter()
+            .map(|c| c.depth())
+            .fold(deepest, f64::max);
     });
     let cube = &world.bodies()[1];
     let drift = (cube.position() - start).norm();
@@ -20,7 +24,10 @@ fn a_resting_cube_stays_put_for_ten_seconds() {
     let spin = cube.angular_velocity().norm();
     assert!(spin < 1e-6, "|ω| = {spin} rad/s");
     let slop = world.settings().contact.slop;
-    assert!(deepest <= slop, "penetration {deepest} m beyond the slop {slop} m");
+    assert!(
+        deepest <= slop,
+        "penetration {deepest} m beyond the slop {slop} m"
+    );
 }
 
 #[test]
@@ -37,17 +44,32 @@ fn a_dropped_cube_lands_and_rests_without_gaining_energy() {
     let mut worst_gain: f64 = 0.0;
     let mut deepest: f64 = 0.0;
     run(&mut world, 4.0, |w| {
-        deepest = w.contacts().iter().map(|c| c.depth()).fold(deepest, f64::max);
+        deepest = w
+            .contacts()
+            .iter()
+            .map(|c| c.depth())
+            .fold(deepest, f64::max);
         let excess = (deepest - settings.slop).max(0.0);
         let allowance = G * excess + 0.5 * (settings.bias_rate * excess / DT).powi(2);
         worst_gain = worst_gain.max(w.total_energy() - e0 - allowance);
     });
-    assert!(worst_gain <= 1e-9, "energy grew {worst_gain} J beyond the bias allowance");
+    assert!(
+        worst_gain <= 1e-9,
+        "energy grew {worst_gain} J beyond the bias allowance"
+    );
     let cube = &world.bodies()[1];
-    assert!(cube.linear_velocity().norm() < 1e-3, "still moving: {}", cube.linear_velocity());
+    assert!(
+        cube.linear_velocity().norm() < 1e-3,
+        "still moving: {}",
+        cube.linear_velocity()
+    );
     assert!(cube.angular_velocity().norm() < 1e-3, "still turning");
     // It lies flat: one face down, centre one half-side above the floor (within the slop).
-    assert!((cube.position().z - SIDE / 2.0).abs() < 3e-3, "z = {}", cube.position().z);
+    assert!(
+        (cube.position().z - SIDE / 2.0).abs() < 3e-3,
+        "z = {}",
+        cube.position().z
+    );
 }
 
 #[test]
@@ -69,7 +91,10 @@ fn a_sliding_cube_stops_after_the_closed_form_distance() {
     let travelled = cube.position().x;
     // Semi-implicit Euler stops v₀·dt/2 short (1% here); 2% is the requirement.
     let error = (travelled - expected).abs() / expected;
-    assert!(error < 0.02, "travelled {travelled} m, closed form {expected} m");
+    assert!(
+        error < 0.02,
+        "travelled {travelled} m, closed form {expected} m"
+    );
 }
 
 /// A cube resting on a fixed incline of `degrees`, both with friction `(μs, μk)`; returns how far
@@ -103,7 +128,10 @@ fn a_cube_holds_on_an_incline_below_the_static_coefficient_and_slides_above() {
     // Once sliding, kinetic friction: a = g (sin θ − μk cos θ).
     let theta = above.to_radians();
     let expected = 0.5 * G * (theta.sin() - mu_k * theta.cos()) * 4.0;
-    assert!(slid > 0.9 * expected, "tan θ = μs + 0.05 slid {slid} m, expected ≈ {expected} m");
+    assert!(
+        slid > 0.9 * expected,
+        "tan θ = μs + 0.05 slid {slid} m, expected ≈ {expected} m"
+    );
 }
 
 /// The paper's solver settings (15 sweeps, relaxation 1) with warm starting: without it, 15
@@ -122,7 +150,10 @@ fn a_tower_of_ten_cubes_stands_for_ten_seconds() {
     };
     let mut builder = World::builder().settings(settings).body(floor());
     for k in 0..10 {
-        builder = builder.body(cube(&format!("cube{k}"), [0.0, 0.0, SIDE / 2.0 + SIDE * k as f64]));
+        builder = builder.body(cube(
+            &format!("cube{k}"),
+            [0.0, 0.0, SIDE / 2.0 + SIDE * k as f64],
+        ));
     }
     let mut world = builder.build().unwrap();
     let top_start = world.bodies()[10].position();
@@ -133,5 +164,8 @@ fn a_tower_of_ten_cubes_stands_for_ten_seconds() {
     // Standing: the top cube is within 2 cm of where it started (the stack is 20 m high; a
     // falling tower moves metres), each of the ten contacts at most a slop deep.
     assert!(sway < 0.02, "top cube moved {sway} m sideways");
-    assert!(drop < 10.0 * world.settings().contact.slop, "top cube dropped {drop} m");
+    assert!(
+        drop < 10.0 * world.settings().contact.slop,
+        "top cube dropped {drop} m"
+    );
 }

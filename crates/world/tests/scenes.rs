@@ -1,0 +1,195 @@
+//! Scene files: the examples in `scenes/` load and run; every kind of invalid scene is rejected
+//! with an error naming the field and the line.
+
+use std::path::Path;
+
+use tatami_world::scene::{Scene, SceneError};
+
+/// A valid scene with one dynamic cube, laid out one field per line so errors have known lines.
+/// `edit` replaces one line (1-based) to make it invalid.
+fn scene_with(line: usize, replacement: &str) -> String {
+    let lines = [
+        r#"{"#,                                                  // 1
+        r#"  "gravity": [0, 0, -9.8],"#,                         // 2
+        r#"  "dt": 0.01,"#,                                      // 3
+        r#"  "model": "vertex","#,                               // 4
+        r#"  "bodies": ["#,                                      // 5
+        r#"    { "name": "ground", "fixed": true,"#,             // 6
+        r#"      "shape": { "box": { "size": [40, 40, 2] } },"#, // 7
+        r#"      "position": [0, 0, -1] },"#,                    // 8
+        r#"    { "name": "cube","#,                              // 9
+        r#"      "shape": { "box": { "size": [2, 2, 2] } },"#,   // 10
+        r#"      "mass": 1.0,"#,                                 // 11
+        r#"      "friction": 0.5,"#,                             // 12
+        r#"      "position": [0, 0, 1] } ] }"#,                  // 13
+    ];
+    let mut lines: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
+    if line > 0 {
+        lines[line - 1] = replacement.to_owned();
+    }
+    lines.join("\n")
+}
+
+/// The error for `text`, which must be rejected.
+fn rejection(text: &str) -> (String, usize, String) {
+    match Scene::from_json(text) {
+        Err(SceneError::Invalid {
+            field,
+            line,
+            message,
+            ..
+        }) => (field, line, message),
+        other => panic!("expected an invalid-scene error, got {other:?}"),
+    }
+}
+
+#[test]
+fn the_unedited_scene_is_valid() {
+    let scene = Scene::from_json(&scene_with(0, "")).unwrap();
+    assert_eq!(scene.bodies.len(), 2);
+    assert!(scene.world().is_ok());
+}
+
+#[test]
+fn each_invalid_field_is_named_with_its_line() {
+    // (line edited, new text, field, message, line reported)
+    let cases: &[(usize, &str, &str, &str, usize)] = &[
+        (11, r#"      "mass": 0,"#, "bodies[1].mass", "> 0", 11),
+        (11, r#"      "mass": -2.5,"#, "bodies[1].mass", "> 0", 11),
+        (
+            10,
+            r#"      "shape": { "box": { "size": [2, 0, 2] } },"#,
+            "bodies[1].shape.box.size[1]",
+            "> 0",
+            10,
+        ),
+        (
+            10,
+            r#"      "shape": { "sphere": { "radius": -1 } },"#,
+            "bodies[1].shape.sphere.radius",
+            "> 0",
+            10,
+        ),
+        (
+            12,
+            r#"      "friction": -0.1,"#,
+            "bodies[1].friction",
+            "≥ 0",
+            12,
+        ),
+        (3, r#"  "dt": 0,"#, "dt", "> 0", 3),
+        (3, r#"  "dt": -0.01,"#, "dt", "> 0", 3),
+        (3, r#"  "dt": 1e400,"#, "dt", "number out of range", 3),
+        (
+            2,
+            r#"  "gravity": [0, 0, -1e999],"#,
+            "gravity[2]",
+            "number out of range",
+            2,
+        ),
+        (
+            12,
+            r#"      "friction": 0.5, "colour": "red","#,
+            "bodies[1]",
+            "unknown field `colour`",
+            12,
+        ),
+        (
+            3,
+            r#"  "dt": 0.01, "substeps": 4,"#,
+            "substeps",
+            "unknown field `substeps`",
+            3,
+        ),
+        (
+            10,
+            r#"      "shape": { "cone": { "radius": 1 } },"#,
+            "bodies[1].shape",
+            "unknown variant `cone`",
+            10,
+        ),
+        (
+            10,
+            r#"      "shape": { "box": { "size": [2, 2, 2], "round": 1 } },"#,
+            "bodies[1].shape.box",
+            "unknown field `round`",
+            10,
+        ),
+        (
+            4,
+            r#"  "model": "springs","#,
+            "model",
+            "unknown model `springs`",
+            4,
+        ),
+        (
+            11,
+            r#"      "mass": 1.0, "density": 5,"#,
+            "bodies[1]",
+            "not both",
+            13,
+        ),
+        (
+            12,
+            r#"      "friction": 0.5 "#,
+            "bodies[1]",
+            "expected `,` or `}`",
+            13,
+        ),
+        (3, r#"  "dt": NaN,"#, "dt", "expected value", 3),
+    ];
+    for &(line, replacement, field, message, reported) in cases {
+        let (got_field, got_line, got_message) = rejection(&scene_with(line, replacement));
+        assert!(
+            got_field.starts_with(field) || field.starts_with(&got_field),
+            "{replacement}: field {got_field}, expected {field}"
+        );
+        // A body-level problem is reported where the body's object ends, a missing comma at the
+        // next token: both on line 13.
+        assert_eq!(
+            got_line, reported,
+            "{replacement} (line {line}): {got_message}"
+        );
+        assert!(
+            got_message.contains(message),
+            "{replacement}: message {got_message:?}"
+        );
+    }
+}
+
+#[test]
+fn a_flat_convex_hull_is_rejected_with_the_body_line() {
+    let flat = r#"      "shape": { "convex": { "points": [[0,0,0],[1,0,0],[0,1,0],[1,1,0]] } },"#;
+    let (field, line, message) = rejection(&scene_with(10, flat));
+    assert_eq!(field, "bodies[1]");
+    assert_eq!(line, 13);
+    assert!(message.contains("no volume"), "{message}");
+}
+
+#[test]
+fn malformed_json_and_missing_files_are_errors() {
+    let (field, line, _) = rejection("{\n  \"dt\": 0.01,\n  \"bodies\": [\n");
+    assert_eq!((field.as_str(), line), ("bodies", 4));
+    let missing = Scene::load("no/such/scene.json").unwrap_err();
+    assert!(matches!(missing, SceneError::Io { .. }));
+    assert!(missing.to_string().contains("no/such/scene.json"));
+}
+
+#[test]
+fn every_example_scene_loads_and_runs() {
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes");
+    let mut count = 0;
+    for entry in std::fs::read_dir(&folder).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().and_then(|e| e.to_str()) != Some("json") {
+            continue;
+        }
+        let scene = Scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
+        let mut world = scene.world().unwrap();
+        for _ in 0..10 {
+            world.step(scene.dt).unwrap();
+        }
+        count += 1;
+    }
+    assert!(count >= 4, "found {count} scenes in {}", folder.display());
+}
