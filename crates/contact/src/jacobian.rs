@@ -30,3 +30,12 @@ pub(crate) fn relative_velocity(
     let vb = b.linear_velocity + b.angular_velocity.cross(&(p - contact.centre_b));
     va - vb
 }
+
+/// The row measuring the angular velocity of A relative to B about `axis`.
+pub(crate) fn angular_jacobian(axis: &Vector3<f64>) -> Jacobian {
+    Jacobian {
+        angular_a: *axis,
+        angular_b: -axis,
+        ..Jacobian::default()
+    }
+}

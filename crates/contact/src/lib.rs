@@ -4,6 +4,11 @@
 //! Every model sees the same [`Contact`]; they differ in the rows they emit:
 //! - [`ContactModel::Vertex`] — one point constraint per support-polygon vertex: a normal row
 //!   `λₙ ≥ 0` and two friction rows bounded by `μ λₙ` (box or circular cone). 3 rows per vertex.
+//! - [`ContactModel::Patch`] — a normal row per vertex; friction and twist rows at the friction
+//!   centre bounded by the total normal impulse. `k + 3` rows.
+//! - [`ContactModel::Face`] — the paper's method: one 6-row constraint at the support polygon's
+//!   centroid; twist bounded by torsional friction, tilt by keeping the centre of pressure (ZMP)
+//!   in the polygon. 6 rows per face, whatever its vertex count.
 //!
 //! Rows are written into a [`tatami_lcp::Problem`] whose blocks carry a [`ContactProjection`],
 //! so one problem holds contacts of any model and any solver of the LCP crate can solve it.
@@ -43,10 +48,12 @@
 
 mod contact;
 mod error;
+pub mod face;
 mod frame;
 mod jacobian;
 mod material;
 mod model;
+pub mod patch;
 mod point_friction;
 mod projection;
 mod settings;
@@ -60,4 +67,4 @@ pub use material::Material;
 pub use model::ContactModel;
 pub use point_friction::PointFriction;
 pub use projection::ContactProjection;
-pub use settings::{ContactSettings, FrictionCone};
+pub use settings::{ContactSettings, FrictionCone, TwistRadius};

@@ -3,24 +3,34 @@
 use nalgebra::Point3;
 use tatami_lcp::Problem;
 
-use crate::{Contact, ContactError, ContactProjection, ContactSettings, vertex};
+use crate::{Contact, ContactError, ContactProjection, ContactSettings, face, patch, vertex};
 
 /// Which rows a contact becomes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ContactModel {
-    /// One point constraint (3 rows) per support-polygon vertex.
+    /// One point constraint (3 rows) per support-polygon vertex (the paper's baseline).
     #[default]
     Vertex,
+    /// Normal rows per vertex, friction and twist at the friction centre (Rapier, Jolt, Box3D).
+    Patch,
+    /// One 6-row constraint per face with torsional friction and the ZMP bound (the paper's).
+    Face,
 }
 
 impl ContactModel {
     /// Every model, for sweeps and comparisons.
-    pub const ALL: [ContactModel; 1] = [ContactModel::Vertex];
+    pub const ALL: [ContactModel; 3] = [
+        ContactModel::Vertex,
+        ContactModel::Patch,
+        ContactModel::Face,
+    ];
 
     /// The model's name as scenes and the command line spell it.
     pub fn name(self) -> &'static str {
         match self {
             Self::Vertex => "vertex",
+            Self::Patch => "patch",
+            Self::Face => "face",
         }
     }
 
@@ -46,6 +56,8 @@ impl ContactModel {
         contact.validate(problem.bodies.len())?;
         match self {
             Self::Vertex => vertex::build(contact, dt, settings, problem),
+            Self::Patch => patch::build(contact, dt, settings, problem),
+            Self::Face => face::build(contact, dt, settings, problem),
         }
         Ok(())
     }
@@ -62,6 +74,8 @@ impl ContactModel {
                     .iter()
                     .map(|v| contact.frame.to_world(v)),
             ),
+            Self::Patch => out.push(contact.frame.to_world(&patch::friction_centre(contact))),
+            Self::Face => out.push(contact.frame.to_world(&contact.support.centroid())),
         }
     }
 }

@@ -3,24 +3,34 @@
 use tatami_lcp::{Projection, RowBound};
 
 use crate::PointFriction;
+use crate::face::FaceProjection;
+use crate::patch::PatchProjection;
 
 /// The projection of one contact block, by model.
 #[derive(Debug, Clone, PartialEq)]
 pub enum ContactProjection {
     /// A point contact of the vertex model: rows normal, t1, t2.
     Point(PointFriction),
+    /// A patch-model contact: normal rows per vertex, then f1, f2, twist.
+    Patch(PatchProjection),
+    /// A face-model contact: rows f3, f1, f2, τ1, τ2, τ3.
+    Face(FaceProjection),
 }
 
 impl Projection for ContactProjection {
     fn project(&mut self, impulses: &mut [f64], row_velocity: &[f64], changed: usize) {
         match self {
             Self::Point(p) => p.project(impulses, row_velocity, changed),
+            Self::Patch(p) => p.project(impulses, row_velocity, changed),
+            Self::Face(p) => p.project(impulses, row_velocity, changed),
         }
     }
 
     fn bound(&self, row: usize) -> Option<RowBound> {
         match self {
             Self::Point(p) => p.bound(row),
+            Self::Patch(p) => p.bound(row),
+            Self::Face(p) => p.bound(row),
         }
     }
 }

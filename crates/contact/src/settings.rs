@@ -11,6 +11,19 @@ pub enum FrictionCone {
     Circle,
 }
 
+/// How the face and patch models compute the mean distance `r̄` of the twist bound.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum TwistRadius {
+    /// The exact closed form over the support polygon (default).
+    #[default]
+    Exact,
+    /// The paper's grid integral (eq. 9) with the given spacing (m), for reproduction.
+    Grid {
+        /// Grid spacing (m).
+        spacing: f64,
+    },
+}
+
 /// How contact rows turn depth, approach speed and slip into targets and bounds.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactSettings {
@@ -20,15 +33,21 @@ pub struct ContactSettings {
     pub slop: f64,
     /// Approach speed above which restitution applies (m/s).
     pub restitution_threshold: f64,
-    /// Slip speed above which a contact uses kinetic friction (m/s, or rad/s for twist).
+    /// Slip speed above which a contact uses kinetic friction (m/s). For twist the slip speed is
+    /// the twist rate times `r̄`.
     pub slip_threshold: f64,
     /// Friction bound at each point.
     pub friction_cone: FrictionCone,
+    /// Face model: how `r̄` is computed.
+    pub twist_radius: TwistRadius,
+    /// Face model: remove the part of the torque parallel to the force before the ZMP step (the
+    /// paper's eq. 12 variant).
+    pub remove_parallel_torque: bool,
 }
 
 impl Default for ContactSettings {
     /// Springhead's bias (rate 0.1 beyond 2 mm), Box2D's 1 m/s restitution threshold, kinetic
-    /// friction above 1 mm/s of slip, box friction.
+    /// friction above 1 mm/s of slip, box friction, exact `r̄`.
     fn default() -> Self {
         Self {
             bias_rate: 0.1,
@@ -36,6 +55,8 @@ impl Default for ContactSettings {
             restitution_threshold: 1.0,
             slip_threshold: 1e-3,
             friction_cone: FrictionCone::Box,
+            twist_radius: TwistRadius::Exact,
+            remove_parallel_torque: false,
         }
     }
 }

@@ -1,0 +1,186 @@
+//! The face model (the paper's method; Springhead's `PHContactSurface`): one 6-row constraint
+//! per contact face at the support polygon's centroid `G`, rows `(f3, f1, f2, τ1, τ2, τ3)` with
+//! target relative twist 0, kept physical by [`FaceProjection`]:
+//!
+//! 1. `f3 ≥ 0`; friction `|f1|, |f2| ≤ μ f3` (box) or `|(f1, f2)| ≤ μ f3` (circle);
+//! 2. twist `|τ3| ≤ μ f3 r̄`, `r̄` the mean distance of the polygon from `G` (exact);
+//! 3. tilt: the centre of pressure `p = (−τ2, τ1) / f3` (relative to `G`) must lie in the
+//!    polygon; if not, it moves to the nearest point `p̂` and `τ1 = p̂_y f3`, `τ2 = −p̂_x f3`.
+//!
+//! A point support thus carries no torque, a segment only tilt about itself and its line twist.
+
+use nalgebra::Point2;
+use tatami_geometry::{ConvexPolygon, Sector};
+use tatami_lcp::{Block, Problem, Projection, Row, RowBound};
+
+use crate::jacobian::{angular_jacobian, point_jacobian, relative_velocity};
+use crate::target::normal_target;
+use crate::{Contact, ContactProjection, ContactSettings, FrictionCone, TwistRadius};
+
+/// Rows of a face constraint.
+pub const ROWS: usize = 6;
+
+/// Row indices within a face block.
+const NORMAL: usize = 0;
+const TILT_1: usize = 3;
+const TILT_2: usize = 4;
+const TWIST: usize = 5;
+
+/// Below this normal impulse (N·s) a face carries no torque: the centre of pressure is undefined.
+pub const MIN_NORMAL_IMPULSE: f64 = 1e-12;
+
+/// The projection of a face block onto its admissible wrenches.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FaceProjection {
+    /// The support polygon (contact-plane coordinates).
+    pub support: ConvexPolygon,
+    /// `G`, where the constraint acts.
+    pub centre: Point2<f64>,
+    /// Force friction coefficient for this step.
+    pub friction: f64,
+    /// `μ r̄`: the twist bound per unit normal impulse (m).
+    pub twist_per_normal: f64,
+    /// Box or circular friction bound.
+    pub cone: FrictionCone,
+    /// Remove the torque's part parallel to the force first (paper's eq. 12 variant).
+    pub remove_parallel_torque: bool,
+    /// Fan sector of the last centre of pressure: the next search starts there.
+    pub hint: Sector,
+}
+
+impl FaceProjection {
+    /// The centre of pressure of impulses `λ`, relative to `G`; `None` when `f3` is too small.
+    pub fn centre_of_pressure(impulses: &[f64]) -> Option<Point2<f64>> {
+        let f3 = impulses[NORMAL];
+        (f3 > MIN_NORMAL_IMPULSE)
+            .then(|| Point2::new(-impulses[TILT_2] / f3, impulses[TILT_1] / f3))
+    }
+
+    fn clamp_zmp(&mut self, impulses: &mut [f64]) {
+        let f3 = impulses[NORMAL];
+        let Some(p) = Self::centre_of_pressure(impulses) else {
+            impulses[TILT_1] = 0.0;
+            impulses[TILT_2] = 0.0;
+            impulses[TWIST] = 0.0;
+            return;
+        };
+        let absolute = self.centre + p.coords;
+        let location = self.support.locate_from(&absolute, self.hint);
+        self.hint = location.sector;
+        if location.inside {
+            return;
+        }
+        let (nearest, sector) = self.support.nearest_point_from(&absolute, location.sector);
+        self.hint = sector;
+        let p_hat = nearest - self.centre;
+        impulses[TILT_1] = p_hat.y * f3;
+        impulses[TILT_2] = -p_hat.x * f3;
+    }
+}
+
+impl Projection for FaceProjection {
+    fn project(&mut self, impulses: &mut [f64], _row_velocity: &[f64], changed: usize) {
+        impulses[NORMAL] = impulses[NORMAL].max(0.0);
+        let f3 = impulses[NORMAL];
+        let limit = self.friction * f3;
+        match self.cone {
+            FrictionCone::Box => {
+                impulses[1] = impulses[1].clamp(-limit, limit);
+                impulses[2] = impulses[2].clamp(-limit, limit);
+            }
+            FrictionCone::Circle => {
+                let norm = impulses[1].hypot(impulses[2]);
+                if norm > limit {
+                    impulses[1] *= limit / norm;
+                    impulses[2] *= limit / norm;
+                }
+            }
+        }
+        if self.remove_parallel_torque {
+            let force = nalgebra::Vector3::new(impulses[1], impulses[2], f3);
+            let torque = nalgebra::Vector3::new(impulses[3], impulses[4], impulses[5]);
+            let f2 = force.norm_squared();
+            if f2 > 0.0 {
+                let perpendicular = torque - force * (torque.dot(&force) / f2);
+                impulses[3..6].copy_from_slice(perpendicular.as_slice());
+            }
+        }
+        let twist = self.twist_per_normal * f3;
+        impulses[TWIST] = impulses[TWIST].clamp(-twist, twist);
+        // The centre of pressure moves only when f3 or a tilt torque changed.
+        if matches!(changed, NORMAL | TILT_1 | TILT_2) || self.remove_parallel_torque {
+            self.clamp_zmp(impulses);
+        }
+    }
+
+    /// Only the normal row is a plain bound: the torques' ZMP constraint is not a product of row
+    /// bounds, so the direct solver rejects face blocks.
+    fn bound(&self, row: usize) -> Option<RowBound> {
+        (row == NORMAL).then_some(RowBound::NonNegative)
+    }
+}
+
+/// Appends one 6-row block at the support polygon's centroid. The contact must be validated.
+pub(crate) fn build(
+    contact: &Contact,
+    dt: f64,
+    settings: &ContactSettings,
+    problem: &mut Problem<ContactProjection>,
+) {
+    let frame = &contact.frame;
+    let centre = contact.support.centroid();
+    let p = frame.to_world(&centre);
+    let v = relative_velocity(contact, &problem.bodies, &p);
+    let normal_speed = v.dot(&frame.normal);
+    let slip = (v - frame.normal * normal_speed).norm();
+    let (a, b) = (
+        &problem.bodies[contact.body_a.0],
+        &problem.bodies[contact.body_b.0],
+    );
+    let twist_rate = (a.angular_velocity - b.angular_velocity)
+        .dot(&frame.normal)
+        .abs();
+    let r_bar = match settings.twist_radius {
+        TwistRadius::Exact => contact.support.mean_distance(&centre),
+        TwistRadius::Grid { spacing } => contact.support.mean_distance_grid(&centre, spacing),
+    };
+    let material = &contact.material;
+    let twist_friction = material.friction(twist_rate * r_bar, settings.slip_threshold);
+    let target = normal_target(
+        contact.depth(),
+        normal_speed,
+        material.restitution,
+        dt,
+        settings,
+    );
+    let start = problem.rows.len();
+    let rows = [
+        (point_jacobian(contact, &p, &frame.normal), target),
+        (point_jacobian(contact, &p, &frame.tangent1), 0.0),
+        (point_jacobian(contact, &p, &frame.tangent2), 0.0),
+        (angular_jacobian(&frame.tangent1), 0.0),
+        (angular_jacobian(&frame.tangent2), 0.0),
+        (angular_jacobian(&frame.normal), 0.0),
+    ];
+    problem
+        .rows
+        .extend(rows.into_iter().map(|(jacobian, target)| Row {
+            jacobian,
+            target,
+            impulse: 0.0,
+        }));
+    problem.blocks.push(Block {
+        body_a: contact.body_a,
+        body_b: contact.body_b,
+        rows: start..start + ROWS,
+        projection: ContactProjection::Face(FaceProjection {
+            support: contact.support.clone(),
+            centre,
+            friction: material.friction(slip, settings.slip_threshold),
+            twist_per_normal: twist_friction * r_bar,
+            cone: settings.friction_cone,
+            remove_parallel_torque: settings.remove_parallel_torque,
+            hint: Sector::default(),
+        }),
+    });
+}

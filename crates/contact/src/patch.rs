@@ -1,0 +1,135 @@
+//! The patch model (Rapier ≥ 0.29, Jolt, Box3D): a normal row per support vertex, and friction
+//! as two tangent rows at the friction centre `c` (the vertices' average) plus one twist row,
+//! bounded by the vertices' total normal impulse: `|f_t| ≤ μ Σ λᵢ`, `|τ| ≤ μ Σ dᵢ λᵢ` with
+//! `dᵢ = |vᵢ − c|`. One block of `k + 3` rows.
+
+use nalgebra::Point2;
+use tatami_lcp::{Block, Problem, Projection, Row, RowBound};
+
+use crate::jacobian::{angular_jacobian, point_jacobian, relative_velocity};
+use crate::target::normal_target;
+use crate::{Contact, ContactProjection, ContactSettings, FrictionCone};
+
+/// The projection of a patch block: rows `λ₁…λₖ` (normals), then `f1, f2, τ`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PatchProjection {
+    /// Distance of each vertex from the friction centre (m).
+    pub distances: Vec<f64>,
+    /// Force friction coefficient for this step.
+    pub friction: f64,
+    /// Twist friction coefficient for this step.
+    pub twist_friction: f64,
+    /// Box or circular friction bound.
+    pub cone: FrictionCone,
+}
+
+impl Projection for PatchProjection {
+    fn project(&mut self, impulses: &mut [f64], _row_velocity: &[f64], _changed: usize) {
+        let k = self.distances.len();
+        let (normals, friction) = impulses.split_at_mut(k);
+        let mut total = 0.0;
+        let mut moment = 0.0;
+        for (lambda, d) in normals.iter_mut().zip(&self.distances) {
+            *lambda = lambda.max(0.0);
+            total += *lambda;
+            moment += d * *lambda;
+        }
+        let limit = self.friction * total;
+        match self.cone {
+            FrictionCone::Box => {
+                friction[0] = friction[0].clamp(-limit, limit);
+                friction[1] = friction[1].clamp(-limit, limit);
+            }
+            FrictionCone::Circle => {
+                let norm = friction[0].hypot(friction[1]);
+                if norm > limit {
+                    friction[0] *= limit / norm;
+                    friction[1] *= limit / norm;
+                }
+            }
+        }
+        let twist = self.twist_friction * moment;
+        friction[2] = friction[2].clamp(-twist, twist);
+    }
+
+    /// The normal rows are plain bounds; the friction rows are bounded by a sum of normals, which
+    /// is not a product of row bounds (the direct solver rejects the block).
+    fn bound(&self, row: usize) -> Option<RowBound> {
+        (row < self.distances.len()).then_some(RowBound::NonNegative)
+    }
+}
+
+/// Appends the patch block. The contact must be validated.
+pub(crate) fn build(
+    contact: &Contact,
+    dt: f64,
+    settings: &ContactSettings,
+    problem: &mut Problem<ContactProjection>,
+) {
+    let frame = &contact.frame;
+    let vertices = contact.support.vertices();
+    let centre = friction_centre(contact);
+    let start = problem.rows.len();
+    for (vertex, &depth) in vertices.iter().zip(&contact.depths) {
+        let p = frame.to_world(vertex);
+        let normal_speed = relative_velocity(contact, &problem.bodies, &p).dot(&frame.normal);
+        problem.rows.push(Row {
+            jacobian: point_jacobian(contact, &p, &frame.normal),
+            target: normal_target(
+                depth,
+                normal_speed,
+                contact.material.restitution,
+                dt,
+                settings,
+            ),
+            impulse: 0.0,
+        });
+    }
+    let c = frame.to_world(&centre);
+    let v = relative_velocity(contact, &problem.bodies, &c);
+    let slip = (v - frame.normal * v.dot(&frame.normal)).norm();
+    let distances: Vec<f64> = vertices.iter().map(|v| (v - centre).norm()).collect();
+    let mean_distance = distances.iter().sum::<f64>() / distances.len() as f64;
+    let (a, b) = (
+        &problem.bodies[contact.body_a.0],
+        &problem.bodies[contact.body_b.0],
+    );
+    let twist_rate = (a.angular_velocity - b.angular_velocity)
+        .dot(&frame.normal)
+        .abs();
+    for jacobian in [
+        point_jacobian(contact, &c, &frame.tangent1),
+        point_jacobian(contact, &c, &frame.tangent2),
+        angular_jacobian(&frame.normal),
+    ] {
+        problem.rows.push(Row {
+            jacobian,
+            target: 0.0,
+            impulse: 0.0,
+        });
+    }
+    let material = &contact.material;
+    problem.blocks.push(Block {
+        body_a: contact.body_a,
+        body_b: contact.body_b,
+        rows: start..problem.rows.len(),
+        projection: ContactProjection::Patch(PatchProjection {
+            friction: material.friction(slip, settings.slip_threshold),
+            twist_friction: material.friction(twist_rate * mean_distance, settings.slip_threshold),
+            distances,
+            cone: settings.friction_cone,
+        }),
+    });
+}
+
+/// The friction centre of a patch: the average of the support vertices (plane coordinates).
+pub fn friction_centre(contact: &Contact) -> Point2<f64> {
+    let vertices = contact.support.vertices();
+    Point2::from(
+        vertices
+            .iter()
+            .map(|v| v.coords)
+            .sum::<nalgebra::Vector2<f64>>()
+            / vertices.len() as f64,
+    )
+}

@@ -1,0 +1,281 @@
+//! The three contact models (vertex, patch, face) against closed-form rigid-body physics, and
+//! every solved face wrench against the face model's constraint set.
+
+mod common;
+
+use common::{G, SIDE, cube, floor, rotation, run};
+use nalgebra::{Point3, Vector3};
+use tatami_contact::ContactProjection;
+use tatami_contact::face::FaceProjection;
+use tatami_world::{BodyDesc, ContactModel, Shape, World};
+
+/// Checks every face block of the last step: `f3 ≥ 0`, friction and twist within their bounds,
+/// the centre of pressure inside the support polygon (to 1e-9 of its size).
+fn assert_face_wrenches(world: &World) {
+    let problem = world.problem();
+    for block in &problem.blocks {
+        let ContactProjection::Face(face) = &block.projection else {
+            continue;
+        };
+        let l: Vec<f64> = problem.rows[block.rows.clone()]
+            .iter()
+            .map(|r| r.impulse)
+            .collect();
+        let f3 = l[0];
+        let slack = 1e-12 * (1.0 + f3);
+        assert!(f3 >= 0.0, "f3 = {f3}");
+        assert!(l[1].abs() <= face.friction * f3 + slack, "friction {l:?}");
+        assert!(l[2].abs() <= face.friction * f3 + slack, "friction {l:?}");
+        assert!(
+            l[5].abs() <= face.twist_per_normal * f3 + slack,
+            "twist {l:?}"
+        );
+        match FaceProjection::centre_of_pressure(&l) {
+            Some(p) => {
+                let absolute = face.centre + p.coords;
+                let nearest = face.support.nearest_point(&absolute);
+                let (lo, hi) = face.support.bounding_box();
+                let size = (hi - lo).norm().max(1.0);
+                assert!(
+                    (nearest - absolute).norm() <= 1e-9 * size,
+                    "ZMP {absolute} outside the support polygon {:?}",
+                    face.support.vertices()
+                );
+            }
+            None => assert!(
+                l[3] == 0.0 && l[4] == 0.0 && l[5] == 0.0,
+                "torque without f3"
+            ),
+        }
+    }
+}
+
+fn world(model: ContactModel, bodies: Vec<BodyDesc>) -> World {
+    bodies
+        .into_iter()
+        .fold(World::builder().model(model), |b, body| b.body(body))
+        .build()
+        .unwrap()
+}
+
+#[test]
+fn a_cube_resting_flat_does_not_rock() {
+    for model in ContactModel::ALL {
+        let mut w = world(model, vec![floor(), cube("cube", [0.0, 0.0, SIDE / 2.0])]);
+        run(&mut w, 1.0, assert_face_wrenches);
+        let spin = w.bodies()[1].angular_velocity().norm();
+        println!("{}: |ω| after 1 s = {spin:e} rad/s", model.name());
+        if model == ContactModel::Face {
+            assert!(spin < 1e-9, "face model rocks: |ω| = {spin}");
+        }
+    }
+}
+
+/// Angle (rad) of the cube's rotation about y, for a cube turned about y only.
+fn pitch(w: &World) -> f64 {
+    let q = w.bodies()[1].rotation();
+    2.0 * q.j.atan2(q.w)
+}
+
+#[test]
+fn a_cube_tipping_over_an_edge_follows_the_closed_form() {
+    let a = SIDE;
+    for model in ContactModel::ALL {
+        for past in [5.0_f64, 10.0, 20.0] {
+            // Turned by 45° − past about y, the cube stands on its edge at x = +√2 cos(45° + …)
+            // with its centre of mass `past` degrees beyond the edge, so it tips.
+            let turn = 45.0 - past;
+            let height = a / std::f64::consts::SQRT_2 * past.to_radians().cos();
+            let tipping = cube("cube", [0.0, 0.0, height])
+                .rotation(rotation([0.0, 1.0, 0.0], turn))
+                .friction(1.0);
+            let mut w = world(model, vec![floor().friction(1.0), tipping]);
+            let phi0 = past.to_radians();
+            let mut worst: f64 = 0.0;
+            let mut compared = 0;
+            run(&mut w, 2.0, |w| {
+                assert_face_wrenches(w);
+                // φ from the vertical through the edge; compare while pivoting (φ0 + 2° … 40°).
+                let phi = std::f64::consts::FRAC_PI_4 - pitch(w);
+                if phi > phi0 + 2f64.to_radians() && phi < 40f64.to_radians() {
+                    let omega = w.bodies()[1].angular_velocity().y.abs();
+                    // Energy: ½ (2/3) m a² ω² = m g (a/√2)(cos φ0 − cos φ).
+                    let expected = (3.0 * G * (phi0.cos() - phi.cos())
+                        / (std::f64::consts::SQRT_2 * a))
+                        .sqrt();
+                    worst = worst.max((omega - expected).abs() / expected);
+                    compared += 1;
+                }
+            });
+            assert!(
+                compared > 5,
+                "{} {past}°: only {compared} pivoting steps",
+                model.name()
+            );
+            assert!(
+                worst < 0.03,
+                "{} {past}°: ω off the closed form by {:.2}%",
+                model.name(),
+                worst * 100.0
+            );
+            assert!(
+                pitch(&w).abs() < 0.02,
+                "{} {past}°: did not land on its face",
+                model.name()
+            );
+        }
+    }
+}
+
+#[test]
+fn a_cube_on_a_corner_falls() {
+    let diagonal = Vector3::new(1.0, 1.0, 1.0).normalize();
+    // The body diagonal two degrees off the vertical, in no symmetry plane of the cube (a
+    // symmetric push would balance it on an edge): the centre of mass is past the corner.
+    let upright = nalgebra::UnitQuaternion::rotation_between(&diagonal, &Vector3::z()).unwrap();
+    let tilt = rotation([1.0, -0.4, 0.0], 2.0) * upright;
+    let lowest = (0..8)
+        .map(|i| {
+            let s = |bit: usize| if i & bit == 0 { -1.0 } else { 1.0 };
+            (tilt * Vector3::new(s(1), s(2), s(4))).z
+        })
+        .fold(f64::INFINITY, f64::min);
+    for model in ContactModel::ALL {
+        let on_corner = cube("cube", [0.0, 0.0, -lowest])
+            .rotation(tilt)
+            .friction(1.0);
+        let mut w = world(model, vec![floor().friction(1.0), on_corner]);
+        run(&mut w, 4.0, assert_face_wrenches);
+        let z = w.bodies()[1].position().z;
+        assert!(z < 1.2, "{}: the cube is still up at z = {z}", model.name());
+    }
+}
+
+#[test]
+fn a_cube_over_a_ledge_tips_iff_its_centre_of_mass_is_beyond_the_edge() {
+    for model in ContactModel::ALL {
+        for (overhang, tips) in [(0.2, true), (-0.2, false)] {
+            // A 4 m fixed block with its edge at x = 2; the cube's centre at 2 + overhang.
+            let ledge = BodyDesc::fixed(Shape::cuboid([4.0, 4.0, 2.0]))
+                .name("ledge")
+                .position([0.0, 0.0, -1.0])
+                .friction(1.0);
+            let c = cube("cube", [2.0 + overhang, 0.0, SIDE / 2.0]).friction(1.0);
+            let mut w = world(model, vec![ledge, c]);
+            run(&mut w, 1.5, assert_face_wrenches);
+            let turned = w.bodies()[1].rotation().angle();
+            if tips {
+                assert!(
+                    turned > 0.3,
+                    "{} {overhang}: turned only {turned} rad",
+                    model.name()
+                );
+            } else {
+                let moved =
+                    (w.bodies()[1].position() - Point3::new(2.0 + overhang, 0.0, 1.0)).norm();
+                assert!(
+                    turned < 1e-3 && moved < 3e-3,
+                    "{} {overhang}: turned {turned}, moved {moved}",
+                    model.name()
+                );
+            }
+        }
+    }
+}
+
+/// Angular deceleration (rad/s²) of a cube spinning flat about z, fitted by least squares over
+/// the part of the spin-down between 90% and 10% of the initial rate.
+fn spin_down_rate(model: ContactModel, mu: f64, omega0: f64) -> f64 {
+    let spinning = cube("cube", [0.0, 0.0, SIDE / 2.0])
+        .friction(mu)
+        .angular_velocity([0.0, 0.0, omega0]);
+    let mut w = world(model, vec![floor().friction(mu), spinning]);
+    let mut samples = Vec::new();
+    run(&mut w, 2.0, |w| {
+        assert_face_wrenches(w);
+        let rate = w.bodies()[1].angular_velocity().z;
+        if rate < 0.9 * omega0 && rate > 0.1 * omega0 {
+            samples.push((w.time(), rate));
+        }
+    });
+    let n = samples.len() as f64;
+    let (st, sw) = samples
+        .iter()
+        .fold((0.0, 0.0), |(a, b), (t, r)| (a + t, b + r));
+    let (mt, mw) = (st / n, sw / n);
+    let (cov, var) = samples.iter().fold((0.0, 0.0), |(c, v), (t, r)| {
+        (c + (t - mt) * (r - mw), v + (t - mt) * (t - mt))
+    });
+    -cov / var
+}
+
+#[test]
+fn a_spinning_cube_stops_at_the_uniform_pressure_rate() {
+    let (mu, omega0) = (0.5, 5.0);
+    // Uniform pressure over the a × a face: torque μ m g r̄, r̄ = a(√2 + ln(1 + √2))/6,
+    // about I_z = m a²/6.
+    let r_bar = SIDE * (2f64.sqrt() + (1.0 + 2f64.sqrt()).ln()) / 6.0;
+    let expected = mu * G * r_bar / (SIDE * SIDE / 6.0);
+    let face = spin_down_rate(ContactModel::Face, mu, omega0);
+    assert!(
+        (face - expected).abs() / expected < 0.02,
+        "face: {face} rad/s², closed form {expected}"
+    );
+    for model in [ContactModel::Vertex, ContactModel::Patch] {
+        let rate = spin_down_rate(model, mu, omega0);
+        println!(
+            "{}: spin-down {rate:.3} rad/s² ({:.2}× the closed form)",
+            model.name(),
+            rate / expected
+        );
+    }
+}
+
+#[test]
+fn the_centre_of_pressure_of_a_tetrahedron_leans_toward_the_pulled_vertex() {
+    // A tetrahedron on its base triangle, gravity tilted 10° toward the base vertex at +x.
+    let height = 1.5;
+    let r3 = 3f64.sqrt() / 2.0;
+    let points = vec![
+        Point3::new(1.0, 0.0, 0.0),
+        Point3::new(-0.5, r3, 0.0),
+        Point3::new(-0.5, -r3, 0.0),
+        Point3::new(0.0, 0.0, height),
+    ];
+    let lean = 10f64.to_radians();
+    let gravity = [G * lean.sin(), 0.0, -G * lean.cos()];
+    let tetra = BodyDesc::dynamic(Shape::convex(points))
+        .name("tetra")
+        .mass(1.0)
+        .friction(1.0);
+    let mut w = World::builder()
+        .model(ContactModel::Face)
+        .gravity(gravity)
+        .body(floor().friction(1.0))
+        .body(tetra)
+        .build()
+        .unwrap();
+    run(&mut w, 0.5, assert_face_wrenches);
+    let contact = &w.contacts()[0];
+    assert_eq!(contact.support.vertices().len(), 3);
+    let block = &w.problem().blocks[w.contact_blocks(0).start];
+    let impulses: Vec<f64> = w.problem().rows[block.rows.clone()]
+        .iter()
+        .map(|r| r.impulse)
+        .collect();
+    let p = FaceProjection::centre_of_pressure(&impulses).expect("loaded");
+    let frame = &contact.frame;
+    let zmp = frame.to_world(&(contact.support.centroid() + p.coords));
+    // Static balance: the line of action of gravity through the centre of mass (h/4 above the
+    // base's centroid at the origin) meets the floor h/4 · tan(lean) toward +x.
+    let expected = height / 4.0 * lean.tan();
+    assert!(
+        (zmp.x - expected).abs() < 0.01 * expected + 1e-3,
+        "ZMP at {zmp}, expected x = {expected}"
+    );
+    assert!(zmp.y.abs() < 1e-3, "ZMP at {zmp}");
+    assert!(
+        w.bodies()[1].linear_velocity().norm() < 1e-3,
+        "the tetrahedron moved"
+    );
+}
