@@ -24,6 +24,8 @@ fn from_glam(v: Vector) -> Vector3<f64> {
 #[derive(Clone)]
 pub(crate) struct Collider {
     shape: SharedShape,
+    /// Pose of parry's shape in the body frame (parry's cylinders stand along y, ours along z).
+    local: Pose,
 }
 
 impl std::fmt::Debug for Collider {
@@ -44,17 +46,25 @@ pub(crate) fn pose(origin: &Point3<f64>, rotation: &UnitQuaternion<f64>) -> Pose
 impl Collider {
     /// The parry shape of a valid `shape`; `None` if parry cannot build it (a flat hull).
     pub(crate) fn new(shape: &Shape) -> Option<Self> {
+        let mut local = Pose::IDENTITY;
         let shape = match shape {
             Shape::Box { half_extents: h } => SharedShape::cuboid(h.x, h.y, h.z),
             Shape::Sphere { radius } => SharedShape::ball(*radius),
+            Shape::Cylinder {
+                radius,
+                half_height,
+            } => {
+                local = Pose::from_rotation(Rotation::from_rotation_x(std::f64::consts::FRAC_PI_2));
+                SharedShape::cylinder(*half_height, *radius)
+            }
             Shape::Convex { points } => SharedShape::convex_hull(&glam_points(points))?,
         };
-        Some(Self { shape })
+        Some(Self { shape, local })
     }
 
     /// World bounding box at `pose`, grown by `margin`.
     pub(crate) fn aabb(&self, pose: &Pose, margin: f64) -> (Vector3<f64>, Vector3<f64>) {
-        let aabb = self.shape.compute_aabb(pose);
+        let aabb = self.shape.compute_aabb(&(*pose * self.local));
         let grow = Vector3::repeat(margin);
         (from_glam(aabb.mins) - grow, from_glam(aabb.maxs) + grow)
     }
@@ -83,7 +93,8 @@ pub(crate) fn contact_normal(
     pose_b: &Pose,
     prediction: f64,
 ) -> Option<Vector3<f64>> {
-    let pos_ba = pose_b.inverse() * *pose_a;
+    let (pose_a, pose_b) = (*pose_a * a.local, *pose_b * b.local);
+    let pos_ba = pose_b.inverse() * pose_a;
     let mut manifolds: Vec<ContactManifold<(), ()>> = Vec::new();
     DefaultQueryDispatcher
         .contact_manifolds(

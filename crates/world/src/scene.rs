@@ -299,6 +299,7 @@ impl RawScene {
 enum RawShape {
     Box { size: [Positive; 3] },
     Sphere { radius: Positive },
+    Cylinder { radius: Positive, height: Positive },
     Convex { points: Vec<[Finite; 3]> },
 }
 
@@ -357,6 +358,7 @@ impl BodyFields {
         let shape = match self.shape {
             RawShape::Box { size } => Shape::cuboid(size.map(|s| s.0)),
             RawShape::Sphere { radius } => Shape::sphere(radius.0),
+            RawShape::Cylinder { radius, height } => Shape::cylinder(radius.0, height.0),
             RawShape::Convex { points } => Shape::convex(
                 points
                     .into_iter()

@@ -18,6 +18,13 @@ pub enum Shape {
         /// Radius (m).
         radius: f64,
     },
+    /// A solid cylinder along the body's z axis.
+    Cylinder {
+        /// Radius (m).
+        radius: f64,
+        /// Half the height (m).
+        half_height: f64,
+    },
     /// The convex hull of the given points.
     Convex {
         /// Points in the body frame; interior points are allowed and ignored.
@@ -49,6 +56,14 @@ impl Shape {
         Self::Sphere { radius }
     }
 
+    /// A cylinder along z from its radius and full height.
+    pub fn cylinder(radius: f64, height: f64) -> Self {
+        Self::Cylinder {
+            radius,
+            half_height: height / 2.0,
+        }
+    }
+
     /// The convex hull of `points`.
     pub fn convex(points: Vec<Point3<f64>>) -> Self {
         Self::Convex { points }
@@ -59,6 +74,7 @@ impl Shape {
         match self {
             Self::Box { .. } => "box",
             Self::Sphere { .. } => "sphere",
+            Self::Cylinder { .. } => "cylinder",
             Self::Convex { .. } => "convex",
         }
     }
@@ -90,6 +106,26 @@ impl Shape {
                     volume: 4.0 / 3.0 * std::f64::consts::PI * r.powi(3),
                     centre_of_mass: Point3::origin(),
                     unit_inertia: Matrix3::identity() * (0.4 * r * r),
+                })
+            }
+            Self::Cylinder {
+                radius: r,
+                half_height: h,
+            } => {
+                if !(r.is_finite() && *r > 0.0) {
+                    return Err(invalid("cylinder radius", *r));
+                }
+                if !(h.is_finite() && *h > 0.0) {
+                    return Err(invalid("cylinder height", 2.0 * h));
+                }
+                let axial = 0.5 * r * r;
+                let transverse = (3.0 * r * r + 4.0 * h * h) / 12.0;
+                Ok(MassProperties {
+                    volume: std::f64::consts::PI * r * r * 2.0 * h,
+                    centre_of_mass: Point3::origin(),
+                    unit_inertia: Matrix3::from_diagonal(&Vector3::new(
+                        transverse, transverse, axial,
+                    )),
                 })
             }
             Self::Convex { points } => {

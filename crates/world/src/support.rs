@@ -27,7 +27,18 @@ pub(crate) enum Outline {
         /// Its radius.
         radius: f64,
     },
+    /// A cylinder along the body's z axis; a cap touching flat is a regular
+    /// [`CAP_VERTICES`]-gon inscribed in the rim (its `r̄` within 0.1% of the disc's `2R/3`).
+    Cylinder {
+        /// Radius.
+        radius: f64,
+        /// Half the height.
+        half_height: f64,
+    },
 }
+
+/// Vertices of the polygon standing in for a cylinder's cap.
+pub(crate) const CAP_VERTICES: usize = 64;
 
 impl Outline {
     /// The outline of a polyhedron from its hull vertices.
@@ -49,6 +60,35 @@ impl Outline {
         out.clear();
         match self {
             Self::Sphere { radius } => out.push(origin + direction * *radius),
+            Self::Cylinder {
+                radius,
+                half_height,
+            } => {
+                let d = rotation.inverse_transform_vector(direction);
+                let cap = half_height.copysign(d.z);
+                let radial = Vector3::new(d.x, d.y, 0.0);
+                let rim = radial.try_normalize(1e-12).map(|u| u * *radius);
+                let local = if d.z.abs() >= angle.cos() || rim.is_none() {
+                    (0..CAP_VERTICES)
+                        .map(|k| {
+                            let t = std::f64::consts::TAU * k as f64 / CAP_VERTICES as f64;
+                            Vector3::new(radius * t.cos(), radius * t.sin(), cap)
+                        })
+                        .collect()
+                } else {
+                    let rim = rim.unwrap_or_default();
+                    if d.z.abs() <= angle.sin() {
+                        // Lying on its side: the line along the axis.
+                        vec![
+                            rim - Vector3::z() * *half_height,
+                            rim + Vector3::z() * *half_height,
+                        ]
+                    } else {
+                        vec![rim + Vector3::z() * cap]
+                    }
+                };
+                out.extend(local.into_iter().map(|v| origin + rotation * v));
+            }
             Self::Polyhedron { vertices, radius } => {
                 let local = rotation.inverse_transform_vector(direction);
                 let extreme = vertices

@@ -87,6 +87,16 @@ impl World {
         })?;
         let outline = match (body.shape(), collider.hull_vertices()) {
             (crate::Shape::Sphere { radius }, _) => Outline::Sphere { radius: *radius },
+            (
+                crate::Shape::Cylinder {
+                    radius,
+                    half_height,
+                },
+                _,
+            ) => Outline::Cylinder {
+                radius: *radius,
+                half_height: *half_height,
+            },
             (_, Some(vertices)) => Outline::polyhedron(vertices),
             (_, None) => {
                 return Err(WorldError::InvalidBody {

@@ -183,12 +183,10 @@ fn a_cube_over_a_ledge_tips_iff_its_centre_of_mass_is_beyond_the_edge() {
     }
 }
 
-/// Angular deceleration (rad/s²) of a cube spinning flat about z, fitted by least squares over
-/// the part of the spin-down between 90% and 10% of the initial rate.
-fn spin_down_rate(model: ContactModel, mu: f64, omega0: f64) -> f64 {
-    let spinning = cube("cube", [0.0, 0.0, SIDE / 2.0])
-        .friction(mu)
-        .angular_velocity([0.0, 0.0, omega0]);
+/// Angular deceleration (rad/s²) of `body` (resting flat on the floor) spun about z at `omega0`,
+/// fitted by least squares over the part of the spin-down between 90% and 10% of that rate.
+fn spin_down_rate(model: ContactModel, mu: f64, omega0: f64, body: BodyDesc) -> f64 {
+    let spinning = body.friction(mu).angular_velocity([0.0, 0.0, omega0]);
     let mut w = world(model, vec![floor().friction(mu), spinning]);
     let mut samples = Vec::new();
     run(&mut w, 2.0, |w| {
@@ -216,13 +214,14 @@ fn a_spinning_cube_stops_at_the_uniform_pressure_rate() {
     // about I_z = m a²/6.
     let r_bar = SIDE * (2f64.sqrt() + (1.0 + 2f64.sqrt()).ln()) / 6.0;
     let expected = mu * G * r_bar / (SIDE * SIDE / 6.0);
-    let face = spin_down_rate(ContactModel::Face, mu, omega0);
+    let flat = || cube("cube", [0.0, 0.0, SIDE / 2.0]);
+    let face = spin_down_rate(ContactModel::Face, mu, omega0, flat());
     assert!(
         (face - expected).abs() / expected < 0.02,
         "face: {face} rad/s², closed form {expected}"
     );
     for model in [ContactModel::Vertex, ContactModel::Patch] {
-        let rate = spin_down_rate(model, mu, omega0);
+        let rate = spin_down_rate(model, mu, omega0, flat());
         println!(
             "{}: spin-down {rate:.3} rad/s² ({:.2}× the closed form)",
             model.name(),
@@ -278,4 +277,30 @@ fn the_centre_of_pressure_of_a_tetrahedron_leans_toward_the_pulled_vertex() {
         w.bodies()[1].linear_velocity().norm() < 1e-3,
         "the tetrahedron moved"
     );
+}
+
+#[test]
+fn a_standing_cylinder_spins_down_at_the_disc_rate() {
+    let (mu, omega0, radius, height, mass) = (0.5, 5.0, 1.0, 1.0, 1.0);
+    let standing = || {
+        BodyDesc::dynamic(Shape::cylinder(radius, height))
+            .name("cylinder")
+            .mass(mass)
+            .position([0.0, 0.0, height / 2.0])
+    };
+    // A disc under uniform pressure: torque (2/3) μ N R about I = m R² / 2.
+    let expected = (2.0 / 3.0) * mu * mass * G * radius / (0.5 * mass * radius * radius);
+    let face = spin_down_rate(ContactModel::Face, mu, omega0, standing());
+    assert!(
+        (face - expected).abs() / expected < 0.03,
+        "face: {face} rad/s², closed form {expected}"
+    );
+    for model in [ContactModel::Vertex, ContactModel::Patch] {
+        let rate = spin_down_rate(model, mu, omega0, standing());
+        println!(
+            "{}: cylinder spin-down {rate:.3} rad/s² ({:.2}× the disc rate)",
+            model.name(),
+            rate / expected
+        );
+    }
 }
