@@ -1,5 +1,5 @@
-//! A rigid-body world on Tatami's contact models: bodies with box, sphere and convex-hull
-//! shapes, collision with parry3d whose support polygons keep every vertex of the face-face
+//! A rigid-body world on Tatami's contact models (vertex, patch, face): bodies with box,
+//! sphere, cylinder and convex-hull shapes, collision with parry3d whose support polygons keep every vertex of the face-face
 //! overlap, semi-implicit Euler stepping, and scene files.
 //!
 //! A step is `collision → contact rows → solver → integrate` (see [`World::step`]); each stage is
