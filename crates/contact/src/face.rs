@@ -13,7 +13,7 @@ use nalgebra::Point2;
 use tatami_geometry::{ConvexPolygon, Sector};
 use tatami_lcp::{Block, Problem, Projection, Row, RowBound};
 
-use crate::jacobian::{angular_jacobian, point_jacobian, relative_velocity};
+use crate::jacobian::{angular_jacobian, point_jacobian, point_motion, twist_rate};
 use crate::target::normal_target;
 use crate::{Contact, ContactProjection, ContactSettings, FrictionCone, TwistRadius};
 
@@ -82,20 +82,7 @@ impl Projection for FaceProjection {
     fn project(&mut self, impulses: &mut [f64], _row_velocity: &[f64], changed: usize) {
         impulses[NORMAL] = impulses[NORMAL].max(0.0);
         let f3 = impulses[NORMAL];
-        let limit = self.friction * f3;
-        match self.cone {
-            FrictionCone::Box => {
-                impulses[1] = impulses[1].clamp(-limit, limit);
-                impulses[2] = impulses[2].clamp(-limit, limit);
-            }
-            FrictionCone::Circle => {
-                let norm = impulses[1].hypot(impulses[2]);
-                if norm > limit {
-                    impulses[1] *= limit / norm;
-                    impulses[2] *= limit / norm;
-                }
-            }
-        }
+        self.cone.clamp(&mut impulses[1..3], self.friction * f3);
         if self.remove_parallel_torque {
             let force = nalgebra::Vector3::new(impulses[1], impulses[2], f3);
             let torque = nalgebra::Vector3::new(impulses[3], impulses[4], impulses[5]);
@@ -130,16 +117,8 @@ pub(crate) fn build(
     let frame = &contact.frame;
     let centre = contact.support.centroid();
     let p = frame.to_world(&centre);
-    let v = relative_velocity(contact, &problem.bodies, &p);
-    let normal_speed = v.dot(&frame.normal);
-    let slip = (v - frame.normal * normal_speed).norm();
-    let (a, b) = (
-        &problem.bodies[contact.body_a.0],
-        &problem.bodies[contact.body_b.0],
-    );
-    let twist_rate = (a.angular_velocity - b.angular_velocity)
-        .dot(&frame.normal)
-        .abs();
+    let (normal_speed, slip) = point_motion(contact, &problem.bodies, &p);
+    let twist_rate = twist_rate(contact, &problem.bodies);
     let r_bar = match settings.twist_radius {
         TwistRadius::Exact => contact.support.mean_distance(&centre),
         TwistRadius::Grid { spacing } => contact.support.mean_distance_grid(&centre, spacing),

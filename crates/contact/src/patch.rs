@@ -6,7 +6,7 @@
 use nalgebra::Point2;
 use tatami_lcp::{Block, Problem, Projection, Row, RowBound};
 
-use crate::jacobian::{angular_jacobian, point_jacobian, relative_velocity};
+use crate::jacobian::{angular_jacobian, point_jacobian, point_motion, twist_rate};
 use crate::target::normal_target;
 use crate::{Contact, ContactProjection, ContactSettings, FrictionCone};
 
@@ -34,20 +34,7 @@ impl Projection for PatchProjection {
             total += *lambda;
             moment += d * *lambda;
         }
-        let limit = self.friction * total;
-        match self.cone {
-            FrictionCone::Box => {
-                friction[0] = friction[0].clamp(-limit, limit);
-                friction[1] = friction[1].clamp(-limit, limit);
-            }
-            FrictionCone::Circle => {
-                let norm = friction[0].hypot(friction[1]);
-                if norm > limit {
-                    friction[0] *= limit / norm;
-                    friction[1] *= limit / norm;
-                }
-            }
-        }
+        self.cone.clamp(&mut friction[..2], self.friction * total);
         let twist = self.twist_friction * moment;
         friction[2] = friction[2].clamp(-twist, twist);
     }
@@ -72,7 +59,7 @@ pub(crate) fn build(
     let start = problem.rows.len();
     for (vertex, &depth) in vertices.iter().zip(&contact.depths) {
         let p = frame.to_world(vertex);
-        let normal_speed = relative_velocity(contact, &problem.bodies, &p).dot(&frame.normal);
+        let (normal_speed, _) = point_motion(contact, &problem.bodies, &p);
         problem.rows.push(Row {
             jacobian: point_jacobian(contact, &p, &frame.normal),
             target: normal_target(
@@ -86,17 +73,10 @@ pub(crate) fn build(
         });
     }
     let c = frame.to_world(&centre);
-    let v = relative_velocity(contact, &problem.bodies, &c);
-    let slip = (v - frame.normal * v.dot(&frame.normal)).norm();
+    let (_, slip) = point_motion(contact, &problem.bodies, &c);
     let distances: Vec<f64> = vertices.iter().map(|v| (v - centre).norm()).collect();
     let mean_distance = distances.iter().sum::<f64>() / distances.len() as f64;
-    let (a, b) = (
-        &problem.bodies[contact.body_a.0],
-        &problem.bodies[contact.body_b.0],
-    );
-    let twist_rate = (a.angular_velocity - b.angular_velocity)
-        .dot(&frame.normal)
-        .abs();
+    let twist_rate = twist_rate(contact, &problem.bodies);
     for jacobian in [
         point_jacobian(contact, &c, &frame.tangent1),
         point_jacobian(contact, &c, &frame.tangent2),

@@ -17,21 +17,7 @@ impl Projection for PointFriction {
     fn project(&mut self, impulses: &mut [f64], _row_velocity: &[f64], _changed: usize) {
         impulses[0] = impulses[0].max(0.0);
         let limit = self.coefficient * impulses[0];
-        match self.cone {
-            FrictionCone::Box => {
-                for f in &mut impulses[1..3] {
-                    *f = f.clamp(-limit, limit);
-                }
-            }
-            FrictionCone::Circle => {
-                let norm = impulses[1].hypot(impulses[2]);
-                if norm > limit {
-                    let scale = limit / norm;
-                    impulses[1] *= scale;
-                    impulses[2] *= scale;
-                }
-            }
-        }
+        self.cone.clamp(&mut impulses[1..3], limit);
     }
 
     /// The box cone as row bounds; the circular cone is not a product of row bounds.

@@ -11,6 +11,27 @@ pub enum FrictionCone {
     Circle,
 }
 
+impl FrictionCone {
+    /// Bounds the tangential impulse `tangential = [f1, f2]` by `limit` (already `μ` times the
+    /// normal impulse): each axis for the box, the magnitude (direction kept) for the circle.
+    pub fn clamp(self, tangential: &mut [f64], limit: f64) {
+        match self {
+            Self::Box => {
+                for f in &mut tangential[..2] {
+                    *f = f.clamp(-limit, limit);
+                }
+            }
+            Self::Circle => {
+                let norm = tangential[0].hypot(tangential[1]);
+                if norm > limit {
+                    tangential[0] *= limit / norm;
+                    tangential[1] *= limit / norm;
+                }
+            }
+        }
+    }
+}
+
 /// How the face and patch models compute the mean distance `r̄` of the twist bound.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum TwistRadius {

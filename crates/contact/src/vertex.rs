@@ -4,7 +4,7 @@
 
 use tatami_lcp::{Block, Problem, Row};
 
-use crate::jacobian::{point_jacobian, relative_velocity};
+use crate::jacobian::{point_jacobian, point_motion};
 use crate::target::normal_target;
 use crate::{Contact, ContactProjection, ContactSettings, PointFriction};
 
@@ -21,9 +21,7 @@ pub(crate) fn build(
     let frame = &contact.frame;
     for (vertex, &depth) in contact.support.vertices().iter().zip(&contact.depths) {
         let p = frame.to_world(vertex);
-        let v = relative_velocity(contact, &problem.bodies, &p);
-        let normal_speed = v.dot(&frame.normal);
-        let slip = (v - frame.normal * normal_speed).norm();
+        let (normal_speed, slip) = point_motion(contact, &problem.bodies, &p);
         let start = problem.rows.len();
         let target = normal_target(
             depth,

@@ -69,16 +69,6 @@ impl Shape {
         Self::Convex { points }
     }
 
-    /// The shape's name as scenes spell it.
-    pub fn kind(&self) -> &'static str {
-        match self {
-            Self::Box { .. } => "box",
-            Self::Sphere { .. } => "sphere",
-            Self::Cylinder { .. } => "cylinder",
-            Self::Convex { .. } => "convex",
-        }
-    }
-
     /// Mass properties of the solid shape, or why the shape is invalid (a size not finite and
     /// positive, a hull without volume).
     pub fn mass_properties(&self) -> Result<MassProperties, WorldError> {

@@ -148,9 +148,10 @@ impl World {
         &self.problem
     }
 
-    /// The blocks of [`World::problem`] that belong to contact `index` of [`World::contacts`].
-    pub fn contact_blocks(&self, index: usize) -> Range<usize> {
-        self.contact_blocks[index].clone()
+    /// The blocks of [`World::problem`] that belong to contact `index` of [`World::contacts`]
+    /// (`None` past the last contact).
+    pub fn contact_blocks(&self, index: usize) -> Option<Range<usize>> {
+        self.contact_blocks.get(index).cloned()
     }
 
     /// Time spent in each stage of the last step.

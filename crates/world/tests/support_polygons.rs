@@ -13,6 +13,15 @@ fn contacts_with_floor(body: tatami_world::BodyDesc) -> Vec<tatami_contact::Cont
     world.contacts().to_vec()
 }
 
+/// The contact between bodies 1 and 2 (two stacked cubes on the floor).
+fn between_cubes(world: &World) -> &tatami_contact::Contact {
+    world
+        .contacts()
+        .iter()
+        .find(|c| c.body_a.0 == 1 && c.body_b.0 == 2)
+        .expect("a contact between the cubes")
+}
+
 #[test]
 fn a_cube_flat_on_the_floor_gives_its_square_face() {
     let contacts = contacts_with_floor(cube("cube", [0.0, 0.0, SIDE / 2.0]));
@@ -32,11 +41,7 @@ fn a_cube_twisted_45_degrees_on_a_cube_gives_an_octagon() {
         .build()
         .unwrap();
     world.step(DT).unwrap();
-    let between = world
-        .contacts()
-        .iter()
-        .find(|c| c.body_a.0 == 1 && c.body_b.0 == 2)
-        .expect("a contact between the cubes");
+    let between = between_cubes(&world);
     assert_eq!(between.support.vertices().len(), 8);
     // A regular octagon of inradius 1: area 8 tan(π/8).
     let expected = 8.0 * (std::f64::consts::PI / 8.0).tan();
@@ -81,11 +86,7 @@ fn nearly_aligned_stacked_cubes_get_a_vertical_normal_and_a_shallow_depth() {
             .build()
             .unwrap();
         world.step(DT).unwrap();
-        let c = world
-            .contacts()
-            .iter()
-            .find(|c| c.body_a.0 == 1 && c.body_b.0 == 2)
-            .expect("a contact between the cubes");
+        let c = between_cubes(&world);
         // The normal is one of the two faces' normals: within the top cube's tilt of vertical.
         let tilt = (world.bodies()[2].rotation() * nalgebra::Vector3::z())
             .z
