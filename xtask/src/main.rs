@@ -1,9 +1,12 @@
 //! `cargo xtask …`: Tatami's task runner.
 //!
+//! - `cargo xtask experiments [--out DIR] [--quick]` runs the paper's experiments and Tatami's
+//!   own, and writes CSV files, charts and a report.
 //! - `cargo xtask simulate <scene.json> …` runs a scene and writes its trajectory CSV.
 //!
 //! Errors are printed as one line on stderr with a non-zero exit status.
 
+mod experiments;
 mod simulate;
 mod trajectory;
 
@@ -21,6 +24,8 @@ struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
+    /// Run the paper's experiments and Tatami's own; write CSV, charts and report.md.
+    Experiments(experiments::Args),
     /// Run a scene file and write its trajectory as CSV.
     Simulate(simulate::Args),
 }
@@ -28,6 +33,7 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
+        Command::Experiments(args) => experiments::run(&args),
         Command::Simulate(args) => simulate::run(&args),
     };
     match result {

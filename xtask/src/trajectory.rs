@@ -52,7 +52,7 @@ impl<W: Write> TrajectoryWriter<W> {
 }
 
 /// The shortest decimal form of `x` that parses back to exactly `x` (`Debug` of `f64`).
-fn shortest(x: f64) -> String {
+pub(crate) fn shortest(x: f64) -> String {
     format!("{x:?}")
 }
 

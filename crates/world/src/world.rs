@@ -143,7 +143,8 @@ impl World {
         &self.contacts
     }
 
-    /// The last step's constraint problem, with the solved impulses in its rows.
+    /// The last step's constraint problem, with the solved impulses in its rows (or, after
+    /// [`World::prepare_step`], the unsolved problem it built).
     pub fn problem(&self) -> &Problem<ContactProjection> {
         &self.problem
     }
@@ -185,15 +186,7 @@ impl World {
             return Err(StepError::InvalidTimeStep(dt));
         }
         let start = Instant::now();
-        collision::detect(
-            &self.bodies,
-            &self.geometry,
-            self.settings.contact_margin,
-            self.settings.feature_angle,
-            &mut self.collision_workspace,
-            &mut self.contacts,
-        );
-        order_against_gravity(&mut self.contacts, &self.gravity);
+        self.detect();
         let collided = Instant::now();
         self.build_problem(dt)?;
         let built = Instant::now();
@@ -213,6 +206,44 @@ impl World {
         self.time = t;
         self.steps += 1;
         Ok(())
+    }
+
+    /// Runs the first stages of a step of `dt` (collision, contact rows) from the current state
+    /// and returns the solver's input, without solving it or moving anything: impulses are
+    /// zero, and the bodies' velocities already include gravity's impulse. Experiments and
+    /// benchmarks use it to compare or time solvers alone on a world's real problem.
+    ///
+    /// ```
+    /// use tatami_world::{BodyDesc, Shape, World};
+    /// let mut world = World::builder()
+    ///     .body(BodyDesc::fixed(Shape::cuboid([40.0, 40.0, 2.0])).position([0.0, 0.0, -1.0]))
+    ///     .body(BodyDesc::dynamic(Shape::cuboid([2.0, 2.0, 2.0])).position([0.0, 0.0, 1.0]))
+    ///     .build()?;
+    /// let problem = world.prepare_step(0.01)?;
+    /// assert_eq!(problem.rows.len(), 12, "vertex model: 3 rows at each of 4 corners");
+    /// assert!(problem.rows.iter().all(|row| row.impulse == 0.0));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn prepare_step(&mut self, dt: f64) -> Result<&Problem<ContactProjection>, StepError> {
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err(StepError::InvalidTimeStep(dt));
+        }
+        self.detect();
+        self.build_problem(dt)?;
+        Ok(&self.problem)
+    }
+
+    /// Collision: contacts at the current positions, highest first.
+    fn detect(&mut self) {
+        collision::detect(
+            &self.bodies,
+            &self.geometry,
+            self.settings.contact_margin,
+            self.settings.feature_angle,
+            &mut self.collision_workspace,
+            &mut self.contacts,
+        );
+        order_against_gravity(&mut self.contacts, &self.gravity);
     }
 
     /// Contact rows from the velocities at the start of the step, then gravity's impulse.

@@ -1,0 +1,85 @@
+//! The experiments' scenes, compiled in from `scenes/`: the figures are made from the very files
+//! a user runs with `cargo xtask simulate`.
+
+use tatami_world::scene::Scene;
+use tatami_world::{ContactModel, PgsParams, Solver, World};
+
+/// A scene file of `scenes/`, by name and contents.
+pub struct SceneFile {
+    /// File name in `scenes/`.
+    pub name: &'static str,
+    text: &'static str,
+}
+
+macro_rules! scene_file {
+    ($name:literal) => {
+        SceneFile {
+            name: $name,
+            text: include_str!(concat!("../../../scenes/", $name)),
+        }
+    };
+}
+
+/// 100 cubes of 2 m on the floor, the paper's settings (stack timing, PGS error).
+pub const TOWER: SceneFile = scene_file!("tower_100.json");
+/// A cube released on one edge, 5° past balance (edge toppling).
+pub const EDGE: SceneFile = scene_file!("cube_on_edge.json");
+/// A cube released on one corner, tilted 2° off balance (point toppling).
+pub const CORNER: SceneFile = scene_file!("cube_on_corner.json");
+/// A cube on a 4 m ledge, 0.2 m over its edge (ledge sweep).
+pub const LEDGE: SceneFile = scene_file!("ledge.json");
+/// A cube spinning flat at 5 rad/s (spin-down).
+pub const CUBE_SPIN: SceneFile = scene_file!("cube_spin.json");
+/// A standing cylinder spinning at 5 rad/s (spin-down).
+pub const CYLINDER_SPIN: SceneFile = scene_file!("cylinder_spin.json");
+
+impl SceneFile {
+    /// The parsed scene.
+    pub fn load(&self) -> Result<Scene, String> {
+        Scene::from_json(self.text).map_err(|e| format!("scenes/{}: {e}", self.name))
+    }
+}
+
+/// The world of `scene` under `model` with the paper's solver: 15 PGS sweeps from zero impulses.
+pub fn paper_world(scene: &Scene, model: ContactModel) -> Result<World, String> {
+    let mut scene = scene.clone();
+    scene.settings.model = model;
+    scene.settings.solver = Solver::Pgs(PgsParams::default());
+    scene.world().map_err(|e| e.to_string())
+}
+
+/// Steps `world` by `dt`, naming the step in the error.
+pub fn step(world: &mut World, dt: f64) -> Result<(), String> {
+    world
+        .step(dt)
+        .map_err(|e| format!("step {}: {e}", world.steps() + 1))
+}
+
+/// Runs `scene` for its steps under `model` with the paper's solver, calling `each` after every
+/// step with the step number (from 1).
+pub fn run_paper(
+    scene: &Scene,
+    model: ContactModel,
+    mut each: impl FnMut(usize, &World),
+) -> Result<World, String> {
+    let mut world = paper_world(scene, model)?;
+    for n in 1..=scene.steps {
+        step(&mut world, scene.dt).map_err(|e| format!("{} model: {e}", model.name()))?;
+        each(n, &world);
+    }
+    Ok(world)
+}
+
+/// The edge length of a cubic box shape, if `shape` is one.
+pub fn cube_side(shape: &tatami_world::Shape) -> Option<f64> {
+    match shape {
+        tatami_world::Shape::Box { half_extents }
+            if half_extents
+                .iter()
+                .all(|&h| (h - half_extents.x).abs() < 1e-12) =>
+        {
+            Some(2.0 * half_extents.x)
+        }
+        _ => None,
+    }
+}

@@ -1,0 +1,481 @@
+//! Stack timing (paper fig. 4): towers of N cubes of 2 m on a fixed floor, 15 PGS sweeps; the
+//! time of the solver call alone per model, rows per step, and whether the tower stands.
+//!
+//! The solver call is timed by the world (`StepTimings::solve`), so collision and integration
+//! are left out as in the paper. The median over the steps after a warm-up of 10% resists the
+//! shared machine's noise; the 90th percentile shows the spread. The direct solver runs the
+//! vertex model (the only one it accepts) over fewer steps, and stops growing N once a step
+//! takes longer than the plan allows.
+
+use std::time::{Duration, Instant};
+
+use tatami_lcp::pgs::{self, PgsWorkspace};
+use tatami_lcp::{Problem, Projection, direct};
+
+use tatami_world::scene::Scene;
+use tatami_world::{ContactModel, DirectParams, PgsParams, Solver, WarmStart, World};
+
+use super::chart::{self, Axis, Chart, Series, Stroke};
+use super::table::{Table, record};
+use super::{Outcome, Progress, scenes};
+
+/// The CSV file and its header.
+pub const FILE: &str = "stack_timing.csv";
+/// Columns of [`FILE`].
+pub const HEADER: [&str; 14] = [
+    "model",
+    "solver",
+    "warm_start",
+    "cubes",
+    "steps",
+    "rows",
+    "solver_ms_median",
+    "solver_ms_p90",
+    "run_solver_ms_median",
+    "top_drop_m",
+    "top_shift_m",
+    "max_penetration_m",
+    "stands",
+    "failure",
+];
+
+/// Sizes and run lengths.
+#[derive(Debug, Clone)]
+pub struct Plan {
+    /// Tower heights, in cubes.
+    pub sizes: Vec<usize>,
+    /// Steps of each PGS run (10 s at the scene's dt in the full run).
+    pub steps: usize,
+    /// Steps of each direct run.
+    pub direct_steps: usize,
+    /// Timed solves of each tower's first step (PGS; the direct solver gets a tenth).
+    pub repeats: usize,
+    /// The direct solver stops at the first N whose median solve takes longer.
+    pub direct_limit: Duration,
+}
+
+/// One solver configuration.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Config {
+    model: ContactModel,
+    direct: bool,
+    warm_start: bool,
+}
+
+impl Config {
+    fn solver(&self) -> Solver {
+        if self.direct {
+            Solver::Direct(DirectParams::default())
+        } else {
+            Solver::Pgs(PgsParams {
+                warm_start: if self.warm_start {
+                    WarmStart::On
+                } else {
+                    WarmStart::Off
+                },
+                ..PgsParams::default()
+            })
+        }
+    }
+
+    fn label(&self) -> String {
+        match (self.direct, self.warm_start) {
+            (true, _) => format!("direct ({})", self.model.name()),
+            (false, false) => self.model.name().to_owned(),
+            (false, true) => format!("{}, warm start", self.model.name()),
+        }
+    }
+}
+
+/// What one tower run measured.
+#[derive(Debug, Clone)]
+struct Run {
+    config: Config,
+    cubes: usize,
+    steps: usize,
+    rows: usize,
+    /// Solver call on the tower's first step, over repeats.
+    median_ms: f64,
+    p90_ms: f64,
+    /// The world's solve stage during the run (warm-start bookkeeping included).
+    run_median_ms: f64,
+    top_drop: f64,
+    top_shift: f64,
+    max_penetration: f64,
+    stands: bool,
+    /// The step error that ended the run early, if one did (the run's figures cover the steps
+    /// before it).
+    failure: Option<String>,
+}
+
+/// A tower of `cubes` cubes built from the scene's floor (body 0) and first two cubes (their
+/// spacing is the tower's pitch).
+pub(super) fn tower(
+    template: &Scene,
+    cubes: usize,
+    solver: Solver,
+    model: ContactModel,
+) -> Result<World, String> {
+    let [floor, first, second, ..] = template.bodies.as_slice() else {
+        return Err(format!(
+            "{}: needs a floor and two cubes",
+            scenes::TOWER.name
+        ));
+    };
+    let pitch = second.position - first.position;
+    let mut scene = template.clone();
+    scene.bodies = std::iter::once(floor.clone())
+        .chain((0..cubes).map(|k| {
+            let mut cube = first.clone();
+            cube.name = Some(format!("cube{k}"));
+            cube.position += pitch * k as f64;
+            cube
+        }))
+        .collect();
+    scene.settings.model = model;
+    scene.settings.solver = solver;
+    scene.world().map_err(|e| e.to_string())
+}
+
+/// Median and 90th percentile (ms) of `samples`.
+fn quantiles(mut samples: Vec<Duration>) -> (f64, f64) {
+    samples.sort_unstable();
+    let at = |q: f64| {
+        let i = ((samples.len().max(1) - 1) as f64 * q).round() as usize;
+        samples.get(i).map_or(f64::NAN, Duration::as_secs_f64) * 1e3
+    };
+    (at(0.5), at(0.9))
+}
+
+/// Solves copies of `problem` `repeats` times (plus a fifth as warm-up) and returns the times
+/// of the solver calls alone.
+fn time_solves<P: Projection + Clone>(
+    problem: &Problem<P>,
+    solver: &Solver,
+    repeats: usize,
+) -> Result<Vec<Duration>, String> {
+    let mut workspace = PgsWorkspace::default();
+    let warm_up = repeats.div_ceil(5);
+    let mut times = Vec::with_capacity(repeats);
+    for i in 0..warm_up + repeats {
+        let mut copy = problem.clone();
+        let started = Instant::now();
+        match solver {
+            Solver::Pgs(params) => pgs::solve_in_place(&mut copy, &mut workspace, params).map(drop),
+            Solver::Direct(params) => direct::solve(&mut copy, params).map(drop),
+        }
+        .map_err(|e| e.to_string())?;
+        if i >= warm_up {
+            times.push(started.elapsed());
+        }
+    }
+    Ok(times)
+}
+
+fn measure(
+    template: &Scene,
+    config: Config,
+    cubes: usize,
+    steps: usize,
+    repeats: usize,
+) -> Result<Run, String> {
+    let solver = config.solver();
+    let mut world = tower(template, cubes, solver, config.model)?;
+    let problem = world.prepare_step(template.dt).map_err(|e| e.to_string())?;
+    let rows = problem.rows.len();
+    // Small towers solve in microseconds: enough repeats for ~10k row sweeps keep the clock's
+    // resolution and the machine's noise out of the median.
+    let repeats = if config.direct {
+        repeats
+    } else {
+        repeats.max(10_000 / rows.max(1))
+    };
+    let (median_ms, p90_ms) = match time_solves(problem, &solver, repeats) {
+        Ok(times) => quantiles(times),
+        Err(e) => {
+            return Ok(Run {
+                config,
+                cubes,
+                steps: 0,
+                rows,
+                median_ms: f64::NAN,
+                p90_ms: f64::NAN,
+                run_median_ms: f64::NAN,
+                top_drop: 0.0,
+                top_shift: 0.0,
+                max_penetration: 0.0,
+                stands: false,
+                failure: Some(format!("first step: {e}")),
+            });
+        }
+    };
+    let mut world = tower(template, cubes, solver, config.model)?;
+    let top = world.bodies().len() - 1;
+    let start = world.bodies()[top].position();
+    let pitch = if cubes > 1 {
+        (world.bodies()[2].position() - world.bodies()[1].position()).norm()
+    } else {
+        start.z * 2.0
+    };
+    let warm_up = steps / 10;
+    let mut in_run = Vec::with_capacity(steps);
+    let mut max_penetration = 0.0_f64;
+    let mut failure = None;
+    for step in 0..steps {
+        if let Err(e) = scenes::step(&mut world, template.dt) {
+            failure = Some(e);
+            break;
+        }
+        if step >= warm_up {
+            in_run.push(world.timings().solve);
+        }
+        for contact in world.contacts() {
+            max_penetration = contact
+                .depths
+                .iter()
+                .fold(max_penetration, |m, &d| m.max(d));
+        }
+    }
+    let moved = world.bodies()[top].position() - start;
+    let top_drop = -moved.z;
+    Ok(Run {
+        config,
+        cubes,
+        steps: world.steps(),
+        rows,
+        median_ms,
+        p90_ms,
+        run_median_ms: quantiles(in_run).0,
+        top_drop,
+        top_shift: moved.xy().norm(),
+        max_penetration,
+        stands: failure.is_none() && top_drop < 0.5 * pitch,
+        failure,
+    })
+}
+
+/// Runs every configuration on every size, writes the CSV and the chart.
+pub fn run(plan: &Plan, out: &std::path::Path, progress: &Progress) -> Result<Outcome, String> {
+    let template = scenes::TOWER.load()?;
+    let mut configs: Vec<Config> = Vec::new();
+    for warm_start in [false, true] {
+        for model in ContactModel::ALL {
+            configs.push(Config {
+                model,
+                direct: false,
+                warm_start,
+            });
+        }
+    }
+    let direct = Config {
+        model: ContactModel::Vertex,
+        direct: true,
+        warm_start: false,
+    };
+    let bar = progress.bar(
+        "stack timing",
+        (plan.sizes.len() * (configs.len() + 1)) as u64,
+    );
+    let mut runs = Vec::new();
+    for &cubes in &plan.sizes {
+        for &config in &configs {
+            bar.set_message(format!("{} × {cubes}", config.label()));
+            let run = measure(&template, config, cubes, plan.steps, plan.repeats)?;
+            if let Some(failure) = &run.failure {
+                return Err(format!("{} tower of {cubes}: {failure}", config.label()));
+            }
+            runs.push(run);
+            bar.inc(1);
+        }
+    }
+    let mut direct_stopped = None;
+    for &cubes in &plan.sizes {
+        bar.set_message(format!("direct × {cubes}"));
+        if direct_stopped.is_none() {
+            let run = measure(
+                &template,
+                direct,
+                cubes,
+                plan.direct_steps,
+                plan.repeats.div_ceil(10),
+            )?;
+            let too_slow = run.median_ms > plan.direct_limit.as_secs_f64() * 1e3;
+            if too_slow || run.median_ms.is_nan() {
+                direct_stopped = Some(cubes);
+            }
+            runs.push(run);
+        }
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+
+    let mut table = Table::create(out, FILE, &HEADER)?;
+    for r in &runs {
+        table.record(record![
+            r.config.model.name(),
+            if r.config.direct { "direct" } else { "pgs" },
+            if r.config.warm_start { "on" } else { "off" },
+            r.cubes,
+            r.steps,
+            r.rows,
+            r.median_ms,
+            r.p90_ms,
+            r.run_median_ms,
+            r.top_drop,
+            r.top_shift,
+            r.max_penetration,
+            r.stands,
+            r.failure.as_deref().unwrap_or(""),
+        ])?;
+    }
+    table.finish()?;
+
+    let series = configs
+        .iter()
+        .filter(|c| !c.warm_start)
+        .chain([&direct])
+        .map(|c| Series {
+            name: c.label(),
+            points: runs
+                .iter()
+                .filter(|r| r.config == *c)
+                .map(|r| (r.cubes as f64, r.median_ms))
+                .collect(),
+            stroke: if c.direct {
+                Stroke::Dashed
+            } else {
+                Stroke::Markers
+            },
+            colour: if c.direct {
+                chart::REFERENCE
+            } else {
+                chart::model_colour(c.model)
+            },
+        })
+        .collect();
+    Chart {
+        title: "Solver time per step vs tower height (15 PGS sweeps)",
+        x: Axis {
+            label: "cubes in the tower",
+            log: true,
+        },
+        y: Axis {
+            label: "solver time per step (ms, median)",
+            log: true,
+        },
+        series,
+        legend: chart::Legend::UpperLeft,
+    }
+    .write(out, "stack_timing")?;
+
+    Ok(report(plan, &runs, direct_stopped))
+}
+
+fn find(runs: &[Run], model: ContactModel, warm_start: bool, cubes: usize) -> Option<&Run> {
+    runs.iter().find(|r| {
+        !r.config.direct
+            && r.config.model == model
+            && r.config.warm_start == warm_start
+            && r.cubes == cubes
+    })
+}
+
+fn report(plan: &Plan, runs: &[Run], direct_stopped: Option<usize>) -> Outcome {
+    let mut text = String::new();
+    text.push_str(
+        "**Paper (fig. 4).** Towers of 2 m boxes, 15 iterations, time of the LCP call: the \
+         face-contact constraint is faster than one constraint per vertex, increasingly so \
+         with the number of boxes (Springhead, Intel i5-8250U).\n\n",
+    );
+    text.push_str(&format!(
+        "**Tatami.** The solver call alone, timed on each tower's first step (median of {} \
+         solves after a warm-up; dt = 0.01 s), then a run of {} steps with that solver to see \
+         whether the tower stands: a tower *stands* when its top cube has lost less than half \
+         a cube of height; *drift* is how far the top cube moved. No warm start (the paper's \
+         setting) unless noted.\n\n",
+        plan.repeats, plan.steps
+    ));
+    text.push_str("| cubes | vertex rows | vertex ms | patch ms | face ms | face / vertex | stands (v / p / f) | top drift v / p / f (m) |\n");
+    text.push_str("|---:|---:|---:|---:|---:|---:|:---:|---:|\n");
+    let mut largest_ratio = None;
+    for &cubes in &plan.sizes {
+        let [v, p, f] = ContactModel::ALL.map(|m| find(runs, m, false, cubes));
+        let (Some(v), Some(p), Some(f)) = (v, p, f) else {
+            continue;
+        };
+        let ratio = f.median_ms / v.median_ms;
+        largest_ratio = Some((cubes, ratio));
+        let yes = |r: &Run| if r.stands { "yes" } else { "**no**" };
+        let drift = |r: &Run| r.top_shift.hypot(r.top_drop);
+        text.push_str(&format!(
+            "| {cubes} | {} | {:.4} | {:.4} | {:.4} | {ratio:.2} | {} / {} / {} | {:.3} / {:.3} / {:.3} |\n",
+            v.rows,
+            v.median_ms,
+            p.median_ms,
+            f.median_ms,
+            yes(v),
+            yes(p),
+            yes(f),
+            drift(v),
+            drift(p),
+            drift(f),
+        ));
+    }
+    text.push_str(
+        "\nWith warm starting (impulses carried over from the previous step), solver time \
+         as measured during the run (median over its steps after a 10% warm-up, warm-start \
+         bookkeeping included):\n\n",
+    );
+    text.push_str("| cubes | vertex ms in the run | patch ms | face ms | top drift v / p / f (m) | largest penetration v / p / f (mm) |\n");
+    text.push_str("|---:|---:|---:|---:|---:|---:|\n");
+    for &cubes in &plan.sizes {
+        let [v, p, f] = ContactModel::ALL.map(|m| find(runs, m, true, cubes));
+        let (Some(v), Some(p), Some(f)) = (v, p, f) else {
+            continue;
+        };
+        let drift = |r: &Run| r.top_shift.hypot(r.top_drop);
+        text.push_str(&format!(
+            "| {cubes} | {:.4} | {:.4} | {:.4} | {:.3} / {:.3} / {:.3} | {:.2} / {:.2} / {:.2} |\n",
+            v.run_median_ms,
+            p.run_median_ms,
+            f.run_median_ms,
+            drift(v),
+            drift(p),
+            drift(f),
+            v.max_penetration * 1e3,
+            p.max_penetration * 1e3,
+            f.max_penetration * 1e3,
+        ));
+    }
+    text.push_str("\nThe direct solver (Lemke on the vertex model, exact to round-off):\n\n");
+    text.push_str("| cubes | rows | steps run | ms per solve (median) | stands | failure |\n|---:|---:|---:|---:|:---:|---|\n");
+    for r in runs.iter().filter(|r| r.config.direct) {
+        text.push_str(&format!(
+            "| {} | {} | {} | {:.3} | {} | {} |\n",
+            r.cubes,
+            r.rows,
+            r.steps,
+            r.median_ms,
+            if r.stands { "yes" } else { "no" },
+            r.failure.as_deref().unwrap_or("—"),
+        ));
+    }
+    if let Some(cubes) = direct_stopped {
+        text.push_str(&format!(
+            "\nThe direct solver was not run beyond {cubes} cubes: its median solve passed \
+             {:.0} ms or failed there.\n",
+            plan.direct_limit.as_secs_f64() * 1e3
+        ));
+    }
+    text.push_str("\n![solver time vs tower height](stack_timing.png)\n");
+    let summary = match largest_ratio {
+        Some((cubes, ratio)) => format!("face solver time = {ratio:.2}× vertex at {cubes} cubes"),
+        None => "no tower measured".to_owned(),
+    };
+    Outcome {
+        title: "Stack timing (paper fig. 4)",
+        summary,
+        report: text,
+        files: vec![FILE, "stack_timing.svg", "stack_timing.png"],
+    }
+}

@@ -1,0 +1,109 @@
+//! CSV output of the experiments: a fixed header, then one record per measurement, every number
+//! in its shortest exact form.
+
+use std::fs::File;
+use std::path::Path;
+
+use crate::trajectory::shortest;
+
+/// A CSV file being written.
+pub struct Table {
+    csv: csv::Writer<File>,
+    name: String,
+    columns: usize,
+}
+
+/// One field of a record.
+pub enum Field {
+    /// A number, written exactly.
+    Number(f64),
+    /// A count.
+    Count(usize),
+    /// Text (model names, yes/no).
+    Text(String),
+    /// No value (e.g. a closed form past its domain).
+    Empty,
+}
+
+impl From<f64> for Field {
+    fn from(x: f64) -> Self {
+        Field::Number(x)
+    }
+}
+
+impl From<usize> for Field {
+    fn from(n: usize) -> Self {
+        Field::Count(n)
+    }
+}
+
+impl From<&str> for Field {
+    fn from(text: &str) -> Self {
+        Field::Text(text.to_owned())
+    }
+}
+
+impl From<bool> for Field {
+    fn from(yes: bool) -> Self {
+        Field::Text(if yes { "yes" } else { "no" }.to_owned())
+    }
+}
+
+impl From<Option<f64>> for Field {
+    fn from(x: Option<f64>) -> Self {
+        x.map_or(Field::Empty, Field::Number)
+    }
+}
+
+impl Table {
+    /// Creates `dir/name` and writes `header`.
+    pub fn create(dir: &Path, name: &str, header: &[&str]) -> Result<Self, String> {
+        let path = dir.join(name);
+        let file = File::create(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let mut csv = csv::Writer::from_writer(file);
+        csv.write_record(header)
+            .map_err(|e| format!("{name}: {e}"))?;
+        Ok(Self {
+            csv,
+            name: name.to_owned(),
+            columns: header.len(),
+        })
+    }
+
+    /// Writes one record; it must have one field per column.
+    pub fn record(&mut self, fields: impl IntoIterator<Item = Field>) -> Result<(), String> {
+        let fields: Vec<String> = fields
+            .into_iter()
+            .map(|field| match field {
+                Field::Number(x) => shortest(x),
+                Field::Count(n) => n.to_string(),
+                Field::Text(text) => text,
+                Field::Empty => String::new(),
+            })
+            .collect();
+        if fields.len() != self.columns {
+            return Err(format!(
+                "{}: a record of {} fields for {} columns",
+                self.name,
+                fields.len(),
+                self.columns
+            ));
+        }
+        self.csv
+            .write_record(&fields)
+            .map_err(|e| format!("{}: {e}", self.name))
+    }
+
+    /// Flushes the file.
+    pub fn finish(mut self) -> Result<(), String> {
+        self.csv.flush().map_err(|e| format!("{}: {e}", self.name))
+    }
+}
+
+/// A record from fields of mixed types: `record![model, n, time]`.
+macro_rules! record {
+    ($($field:expr),* $(,)?) => {
+        [$($crate::experiments::table::Field::from($field)),*]
+    };
+}
+pub(crate) use record;
