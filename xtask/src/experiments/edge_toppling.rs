@@ -183,3 +183,23 @@ pub fn run(out: &std::path::Path, progress: &Progress) -> Result<Outcome, String
         files: vec![FILE, "edge_toppling.svg", "edge_toppling.png"],
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_integrated_closed_form_matches_energy_conservation() {
+        let (phi0, side, g, dt) = (5f64.to_radians(), 2.0, 9.8, 0.01);
+        let omega = closed_form(phi0, side, g, dt, 400);
+        let landing = omega.iter().position(Option::is_none).expect("lands");
+        // The last step before landing: φ < 45°, so ω is below the energy form's value at 45°
+        // and within one step's growth of it.
+        let last = omega[landing - 1].unwrap();
+        let at_landing = (3.0 * g * (phi0.cos() - FRAC_PI_4.cos()) / (SQRT_2 * side)).sqrt();
+        let max_accel = 3.0 * g / (2.0 * SQRT_2 * side) * FRAC_PI_4.sin();
+        assert!(last < at_landing && at_landing - last < max_accel * dt * 1.01);
+        // Monotone growth while pivoting.
+        assert!(omega[..landing].windows(2).all(|w| w[1] > w[0]));
+    }
+}

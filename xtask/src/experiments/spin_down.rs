@@ -208,3 +208,27 @@ pub fn run(out: &std::path::Path, progress: &Progress) -> Result<Outcome, String
         ],
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_fit_recovers_a_constant_deceleration_and_ignores_the_stop() {
+        let times: Vec<f64> = (0..300).map(|n| n as f64 * 0.01).collect();
+        let omega: Vec<f64> = times.iter().map(|t| (5.0 - 3.0 * t).max(0.0)).collect();
+        let rate = fitted_rate(&times, &omega, 5.0).unwrap();
+        assert!((rate - 3.0).abs() < 1e-9, "{rate}");
+        assert_eq!(fitted_rate(&times[..2], &omega[..2], 5.0), None);
+    }
+
+    #[test]
+    fn the_closed_forms_are_the_textbook_ones() {
+        let cube = scenes::CUBE_SPIN.load().unwrap();
+        // 6 μ g r̄ / a² with r̄ = 0.3826 a, a = 2, μ = 0.5.
+        let expected = 6.0 * 0.5 * 9.8 * 0.382_597_858 / 2.0;
+        assert!((closed_form(&cube).unwrap() - expected).abs() < 1e-6);
+        let cylinder = scenes::CYLINDER_SPIN.load().unwrap();
+        assert!((closed_form(&cylinder).unwrap() - 4.0 * 0.5 * 9.8 / 3.0).abs() < 1e-12);
+    }
+}

@@ -107,3 +107,23 @@ macro_rules! record {
     };
 }
 pub(crate) use record;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_record_of_the_wrong_width_is_an_error_and_numbers_read_back() {
+        let dir = std::env::temp_dir().join(format!("tatami-table-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let mut table = Table::create(&dir, "t.csv", &["a", "b", "c"]).unwrap();
+        table.record(record!["x", 3usize, 0.1]).unwrap();
+        table.record(record![Some(2.5), None::<f64>, true]).unwrap();
+        let error = table.record(record!["x", 1.0]).unwrap_err();
+        assert!(error.contains("2 fields for 3 columns"), "{error}");
+        table.finish().unwrap();
+        let text = std::fs::read_to_string(dir.join("t.csv")).unwrap();
+        assert_eq!(text, "a,b,c\nx,3,0.1\n2.5,,yes\n");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
