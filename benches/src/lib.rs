@@ -114,3 +114,77 @@ pub fn spd_lcp(n: usize, seed: u64) -> (DMatrix<f64>, DVector<f64>) {
     let q = DVector::from_fn(n, |_, _| next());
     (a, q)
 }
+
+/// Edge of the benchmark cubes (m): the paper's 2 m boxes.
+pub const CUBE_SIDE: f64 = 2.0;
+
+/// Centres of a vertical tower of `n` cubes standing on the plane z = 0.
+pub fn tower_centres(n: usize) -> Vec<[f64; 3]> {
+    (0..n)
+        .map(|k| [0.0, 0.0, CUBE_SIDE * (k as f64 + 0.5)])
+        .collect()
+}
+
+/// Centres of a planar pyramid (in the x–z plane) with `base` cubes in its bottom row and one
+/// fewer in each row above, each row centred: `base (base + 1) / 2` cubes, as in Rapier's and
+/// Box2D's pyramid benchmarks.
+pub fn pyramid_centres(base: usize) -> Vec<[f64; 3]> {
+    (0..base)
+        .flat_map(|row| {
+            let count = base - row;
+            (0..count).map(move |i| {
+                let x = (i as f64 - (count - 1) as f64 / 2.0) * CUBE_SIDE;
+                [x, 0.0, CUBE_SIDE * (row as f64 + 0.5)]
+            })
+        })
+        .collect()
+}
+
+/// A Tatami world of 1 kg cubes at `centres` on a fixed 400 m × 400 m floor (top face at
+/// z = 0), default friction, with `settings`.
+pub fn tatami_cubes(
+    centres: &[[f64; 3]],
+    settings: tatami_world::WorldSettings,
+) -> tatami_world::World {
+    use tatami_world::{BodyDesc, Shape, World};
+    let floor = BodyDesc::fixed(Shape::cuboid([400.0, 400.0, 2.0]))
+        .name("floor")
+        .position([0.0, 0.0, -1.0]);
+    centres
+        .iter()
+        .enumerate()
+        .fold(
+            World::builder().settings(settings).body(floor),
+            |world, (k, &centre)| {
+                world.body(
+                    BodyDesc::dynamic(Shape::cuboid([CUBE_SIDE; 3]))
+                        .name(format!("cube{k}"))
+                        .mass(1.0)
+                        .position(centre),
+                )
+            },
+        )
+        .build()
+        .expect("valid cubes on a floor")
+}
+
+#[cfg(test)]
+mod scene_tests {
+    use super::*;
+
+    #[test]
+    fn a_pyramid_of_base_twenty_has_210_touching_cubes() {
+        let centres = pyramid_centres(20);
+        assert_eq!(centres.len(), 210);
+        // Every cube above the bottom row rests on two cubes half a cube to either side.
+        for c in centres.iter().filter(|c| c[2] > CUBE_SIDE) {
+            let below = |dx: f64| {
+                centres.iter().any(|b| {
+                    (b[0] - (c[0] + dx)).abs() < 1e-12 && (b[2] - (c[2] - CUBE_SIDE)).abs() < 1e-12
+                })
+            };
+            assert!(below(-CUBE_SIDE / 2.0) && below(CUBE_SIDE / 2.0), "{c:?}");
+        }
+        assert_eq!(tower_centres(3)[2], [0.0, 0.0, 5.0]);
+    }
+}
