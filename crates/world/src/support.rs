@@ -47,8 +47,9 @@ impl Outline {
         Self::Polyhedron { vertices, radius }
     }
 
-    /// World points of the feature furthest along `direction`: every vertex within
-    /// `radius · sin(angle)` of the extreme (so faces tilted by less than `angle` count as flat).
+    /// World points of the feature furthest along `direction` (unit): the vertices no other
+    /// vertex lies above more steeply than `angle`, so faces tilted by less than `angle` count as
+    /// flat whatever the body's size.
     pub(crate) fn feature(
         &self,
         origin: &Point3<f64>,
@@ -95,6 +96,7 @@ impl Outline {
                     .iter()
                     .map(|v| v.dot(&local))
                     .fold(f64::NEG_INFINITY, f64::max);
+                // Candidates: every vertex within `radius · sin(angle)` of the extreme.
                 let tolerance = radius * angle.sin();
                 out.extend(
                     vertices
@@ -102,9 +104,38 @@ impl Outline {
                         .filter(|v| v.dot(&local) >= extreme - tolerance)
                         .map(|v| origin + rotation * v),
                 );
+                keep_within_angle(out, direction, angle, 1e-9 * radius);
             }
         }
     }
+}
+
+/// Drops from `points` every point that another lies above more steeply than `angle` (along
+/// the unit `direction`): what is left is the face, edge or corner tilted by less than `angle`
+/// from the plane normal to `direction`. Unlike a height threshold this does not depend on the
+/// body's size: the far bottom corners of a wide, thin slab are within any fixed height of its
+/// top face, but every one lies straight below a top corner.
+///
+/// "Steeply above" is transitive (the slopes add along a chain, the horizontal offsets obey the
+/// triangle inequality), so a point dominated by a dropped point is also dominated by a kept
+/// one, and the points can be compacted in place while being checked.
+fn keep_within_angle(points: &mut Vec<Point3<f64>>, direction: &Vector3<f64>, angle: f64, eps: f64) {
+    let slope = angle.tan();
+    let mut kept = 0;
+    for i in 0..points.len() {
+        let v = points[i];
+        let above = |u: &Point3<f64>| {
+            let offset = u - v;
+            let height = offset.dot(direction);
+            height > (offset - direction * height).norm() * slope + eps
+        };
+        let dominated = points[..kept].iter().chain(&points[i + 1..]).any(above);
+        if !dominated {
+            points[kept] = v;
+            kept += 1;
+        }
+    }
+    points.truncate(kept);
 }
 
 /// A support polygon with its frame and per-vertex depths.

@@ -33,6 +33,27 @@ fn a_cube_flat_on_the_floor_gives_its_square_face() {
 }
 
 #[test]
+fn a_wide_thin_floor_still_touches_with_its_top_face_only() {
+    // A 1 km × 1 km × 2 m slab: its bottom corners are within 1° (seen from the far top
+    // corner) of its top face, and must not join the feature.
+    for width in [40.0, 400.0, 1000.0] {
+        let slab = tatami_world::BodyDesc::fixed(tatami_world::Shape::cuboid([width, width, 2.0]))
+            .position([0.0, 0.0, -1.0]);
+        let mut world = World::builder()
+            .body(slab)
+            .body(cube("cube", [0.0, 0.0, SIDE / 2.0]))
+            .build()
+            .unwrap();
+        common::run(&mut world, 1.0, |_| {});
+        let c = &world.contacts()[0];
+        assert_eq!(c.support.vertices().len(), 4, "{width} m slab");
+        assert!((c.support.area() - SIDE * SIDE).abs() < 1e-9, "{width} m slab");
+        let z = world.bodies()[1].position().z;
+        assert!((z - SIDE / 2.0).abs() < 3e-3, "{width} m slab: the cube sank to z = {z}");
+    }
+}
+
+#[test]
 fn a_cube_twisted_45_degrees_on_a_cube_gives_an_octagon() {
     let mut world = World::builder()
         .body(floor())
