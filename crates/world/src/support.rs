@@ -119,7 +119,12 @@ impl Outline {
 /// "Steeply above" is transitive (the slopes add along a chain, the horizontal offsets obey the
 /// triangle inequality), so a point dominated by a dropped point is also dominated by a kept
 /// one, and the points can be compacted in place while being checked.
-fn keep_within_angle(points: &mut Vec<Point3<f64>>, direction: &Vector3<f64>, angle: f64, eps: f64) {
+fn keep_within_angle(
+    points: &mut Vec<Point3<f64>>,
+    direction: &Vector3<f64>,
+    angle: f64,
+    eps: f64,
+) {
     let slope = angle.tan();
     let mut kept = 0;
     for i in 0..points.len() {

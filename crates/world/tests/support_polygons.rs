@@ -47,9 +47,15 @@ fn a_wide_thin_floor_still_touches_with_its_top_face_only() {
         common::run(&mut world, 1.0, |_| {});
         let c = &world.contacts()[0];
         assert_eq!(c.support.vertices().len(), 4, "{width} m slab");
-        assert!((c.support.area() - SIDE * SIDE).abs() < 1e-9, "{width} m slab");
+        assert!(
+            (c.support.area() - SIDE * SIDE).abs() < 1e-9,
+            "{width} m slab"
+        );
         let z = world.bodies()[1].position().z;
-        assert!((z - SIDE / 2.0).abs() < 3e-3, "{width} m slab: the cube sank to z = {z}");
+        assert!(
+            (z - SIDE / 2.0).abs() < 3e-3,
+            "{width} m slab: the cube sank to z = {z}"
+        );
     }
 }
 
