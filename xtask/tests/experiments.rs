@@ -1,14 +1,9 @@
 //! `cargo xtask experiments` rejects bad options with a one-line reason. (The run itself is
 //! checked by CI: `.ci/run` runs `--quick` in release and checks every file and header.)
 
-use std::process::Command;
+mod common;
 
-fn xtask(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_xtask"))
-        .args(args)
-        .output()
-        .expect("the xtask binary runs")
-}
+use common::xtask;
 
 #[test]
 fn tower_sizes_outside_one_to_a_thousand_are_rejected() {

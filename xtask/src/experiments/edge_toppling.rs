@@ -12,13 +12,11 @@ use std::f64::consts::{FRAC_PI_4, SQRT_2};
 use tatami_world::ContactModel;
 
 use super::chart::{self, Axis, Chart, Series, Stroke};
-use super::table::{Table, record};
+use super::table::write_angular_speeds;
 use super::{Outcome, Progress, scenes};
 
-/// The CSV file.
+/// The CSV file (angular speeds; `model` is `closed_form` for the closed-form rows).
 pub const FILE: &str = "edge_toppling.csv";
-/// Columns of [`FILE`]; `model` is `closed_form` for the closed-form rows.
-pub const HEADER: [&str; 4] = ["step", "time", "model", "omega_rad_s"];
 
 /// Angular speed of the closed form at each step `0..=steps`, `None` once the face has landed.
 fn closed_form(phi0: f64, side: f64, gravity: f64, dt: f64, steps: usize) -> Vec<Option<f64>> {
@@ -91,18 +89,14 @@ pub fn run(out: &std::path::Path, progress: &Progress) -> Result<Outcome, String
     }
     bar.finish_and_clear();
 
-    let mut table = Table::create(out, FILE, &HEADER)?;
-    for trace in &traces {
-        for (n, &w) in trace.omega.iter().enumerate() {
-            table.record(record![n, n as f64 * scene.dt, trace.model.name(), w])?;
-        }
-    }
-    for (n, w) in expected.iter().enumerate() {
-        if let Some(w) = w {
-            table.record(record![n, n as f64 * scene.dt, "closed_form", *w])?;
-        }
-    }
-    table.finish()?;
+    // The closed form holds from release to landing: a prefix of the steps.
+    let closed: Vec<f64> = expected.iter().map_while(|w| *w).collect();
+    let mut written: Vec<(&str, &[f64])> = traces
+        .iter()
+        .map(|t| (t.model.name(), t.omega.as_slice()))
+        .collect();
+    written.push(("closed_form", &closed));
+    write_angular_speeds(out, FILE, scene.dt, &written)?;
 
     let shown = landing.map_or(scene.steps, |n| (2 * n).min(scene.steps));
     let mut series: Vec<Series> = traces
@@ -120,10 +114,10 @@ pub fn run(out: &std::path::Path, progress: &Progress) -> Result<Outcome, String
         .collect();
     series.push(Series {
         name: "closed form (pivot without slip)".to_owned(),
-        points: expected
+        points: closed
             .iter()
             .enumerate()
-            .filter_map(|(n, w)| Some((n as f64, (*w)?)))
+            .map(|(n, &w)| (n as f64, w))
             .collect(),
         stroke: Stroke::Dashed,
         colour: chart::REFERENCE,

@@ -7,13 +7,11 @@
 use tatami_world::ContactModel;
 
 use super::chart::{self, Axis, Chart, Series, Stroke};
-use super::table::{Table, record};
+use super::table::write_angular_speeds;
 use super::{Outcome, Progress, scenes};
 
-/// The CSV file.
+/// The CSV file (angular speeds).
 pub const FILE: &str = "point_toppling.csv";
-/// Columns of [`FILE`].
-pub const HEADER: [&str; 4] = ["step", "time", "model", "omega_rad_s"];
 
 struct Trace {
     model: ContactModel,
@@ -44,13 +42,11 @@ pub fn run(out: &std::path::Path, progress: &Progress) -> Result<Outcome, String
     }
     bar.finish_and_clear();
 
-    let mut table = Table::create(out, FILE, &HEADER)?;
-    for t in &traces {
-        for (n, &w) in t.omega.iter().enumerate() {
-            table.record(record![n, n as f64 * scene.dt, t.model.name(), w])?;
-        }
-    }
-    table.finish()?;
+    let written: Vec<(&str, &[f64])> = traces
+        .iter()
+        .map(|t| (t.model.name(), t.omega.as_slice()))
+        .collect();
+    write_angular_speeds(out, FILE, scene.dt, &written)?;
     Chart {
         title: "Toppling from a corner: angular speed per step",
         x: Axis {

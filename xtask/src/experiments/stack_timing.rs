@@ -108,6 +108,13 @@ struct Run {
     failure: Option<String>,
 }
 
+impl Run {
+    /// How far the top cube moved (m).
+    fn drift(&self) -> f64 {
+        self.top_shift.hypot(self.top_drop)
+    }
+}
+
 /// A tower of `cubes` cubes built from the scene's floor (body 0) and first two cubes (their
 /// spacing is the tower's pitch).
 pub(super) fn tower(
@@ -460,7 +467,6 @@ fn report(plan: &Plan, runs: &[Run], direct_stopped: Option<usize>) -> Outcome {
         let ratio = f.median_ms / v.median_ms;
         largest_ratio = Some((cubes, ratio));
         let yes = |r: &Run| if r.stands { "yes" } else { "**no**" };
-        let drift = |r: &Run| r.top_shift.hypot(r.top_drop);
         text.push_str(&format!(
             "| {cubes} | {} | {:.4} | {:.4} | {:.4} | {ratio:.2} | {} / {} / {} | {:.3} / {:.3} / {:.3} |\n",
             v.rows,
@@ -470,9 +476,9 @@ fn report(plan: &Plan, runs: &[Run], direct_stopped: Option<usize>) -> Outcome {
             yes(v),
             yes(p),
             yes(f),
-            drift(v),
-            drift(p),
-            drift(f),
+            v.drift(),
+            p.drift(),
+            f.drift(),
         ));
     }
     text.push_str(
@@ -487,15 +493,14 @@ fn report(plan: &Plan, runs: &[Run], direct_stopped: Option<usize>) -> Outcome {
         let (Some(v), Some(p), Some(f)) = (v, p, f) else {
             continue;
         };
-        let drift = |r: &Run| r.top_shift.hypot(r.top_drop);
         text.push_str(&format!(
             "| {cubes} | {:.4} | {:.4} | {:.4} | {:.3} / {:.3} / {:.3} | {:.2} / {:.2} / {:.2} |\n",
             v.run_median_ms,
             p.run_median_ms,
             f.run_median_ms,
-            drift(v),
-            drift(p),
-            drift(f),
+            v.drift(),
+            p.drift(),
+            f.drift(),
             v.max_penetration * 1e3,
             p.max_penetration * 1e3,
             f.max_penetration * 1e3,

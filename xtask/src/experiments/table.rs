@@ -6,6 +6,14 @@ use std::path::Path;
 
 use crate::trajectory::shortest;
 
+/// A record from fields of mixed types: `record![model, n, time]`.
+macro_rules! record {
+    ($($field:expr),* $(,)?) => {
+        [$($crate::experiments::table::Field::from($field)),*]
+    };
+}
+pub(crate) use record;
+
 /// A CSV file being written.
 pub struct Table {
     csv: csv::Writer<File>,
@@ -100,13 +108,24 @@ impl Table {
     }
 }
 
-/// A record from fields of mixed types: `record![model, n, time]`.
-macro_rules! record {
-    ($($field:expr),* $(,)?) => {
-        [$($crate::experiments::table::Field::from($field)),*]
-    };
+/// Columns of the angular-speed traces (one row per step per model).
+pub const ANGULAR_SPEED_HEADER: [&str; 4] = ["step", "time", "model", "omega_rad_s"];
+
+/// Writes `dir/name`: the angular speed of each named trace at every step of `dt`.
+pub fn write_angular_speeds(
+    dir: &Path,
+    name: &str,
+    dt: f64,
+    traces: &[(&str, &[f64])],
+) -> Result<(), String> {
+    let mut table = Table::create(dir, name, &ANGULAR_SPEED_HEADER)?;
+    for (model, omega) in traces {
+        for (n, &w) in omega.iter().enumerate() {
+            table.record(record![n, n as f64 * dt, *model, w])?;
+        }
+    }
+    table.finish()
 }
-pub(crate) use record;
 
 #[cfg(test)]
 mod tests {
