@@ -182,9 +182,7 @@ impl World {
 
     /// Advances the world by `dt` seconds.
     pub fn step(&mut self, dt: f64) -> Result<(), StepError> {
-        if !(dt.is_finite() && dt > 0.0) {
-            return Err(StepError::InvalidTimeStep(dt));
-        }
+        check_time_step(dt)?;
         let start = Instant::now();
         self.detect();
         let collided = Instant::now();
@@ -225,9 +223,7 @@ impl World {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn prepare_step(&mut self, dt: f64) -> Result<&Problem<ContactProjection>, StepError> {
-        if !(dt.is_finite() && dt > 0.0) {
-            return Err(StepError::InvalidTimeStep(dt));
-        }
+        check_time_step(dt)?;
         self.detect();
         self.build_problem(dt)?;
         Ok(&self.problem)
@@ -344,6 +340,15 @@ impl World {
             body.rotation = UnitQuaternion::new_normalize(q + spin);
         }
         Ok(())
+    }
+}
+
+/// A time step must be finite and positive.
+fn check_time_step(dt: f64) -> Result<(), StepError> {
+    if dt.is_finite() && dt > 0.0 {
+        Ok(())
+    } else {
+        Err(StepError::InvalidTimeStep(dt))
     }
 }
 
