@@ -144,6 +144,10 @@ fn tatami_configs() -> Vec<(&'static str, WorldSettings)> {
         }),
         ..WorldSettings::default()
     };
+    let shocked = |iterations: usize| WorldSettings {
+        shock_propagation: true,
+        ..face(iterations, WarmStart::Off)
+    };
     vec![
         (
             "tatami defaults (vertex, 15 sweeps)",
@@ -158,6 +162,8 @@ fn tatami_configs() -> Vec<(&'static str, WorldSettings)> {
             "tatami face, 60 sweeps, warm start",
             face(60, WarmStart::On),
         ),
+        ("tatami face, 15 sweeps, shock propagation", shocked(15)),
+        ("tatami face, 4 sweeps, shock propagation", shocked(4)),
     ]
 }
 

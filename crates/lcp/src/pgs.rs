@@ -16,9 +16,11 @@
 //! Box2D relaxes and warm-starts; Jolt warm-starts; the paper does neither, so both are options
 //! here, off by default.
 
+use std::ops::Range;
+
 use nalgebra::Vector3;
 
-use crate::{LcpError, Problem, Projection, SolverBody};
+use crate::{Jacobian, LcpError, Problem, Projection, SolverBody};
 
 /// PGS sweeps per step. Default [`DEFAULT_ITERATIONS`] = 15 (the paper; Springhead's numIter).
 pub const DEFAULT_ITERATIONS: usize = 15;
@@ -151,19 +153,7 @@ fn prepare<P>(problem: &mut Problem<P>, workspace: &mut PgsWorkspace, warm_start
     for block in blocks.iter() {
         let (a, b) = (bodies[block.body_a.0], bodies[block.body_b.0]);
         for r in block.rows.clone() {
-            let j = &rows[r].jacobian;
-            let mut response = RowResponse {
-                linear_a: j.linear_a * a.inv_mass,
-                angular_a: a.inv_inertia_world * j.angular_a,
-                linear_b: j.linear_b * b.inv_mass,
-                angular_b: b.inv_inertia_world * j.angular_b,
-                effective_mass: 0.0,
-            };
-            let k = j.linear_a.dot(&response.linear_a)
-                + j.angular_a.dot(&response.angular_a)
-                + j.linear_b.dot(&response.linear_b)
-                + j.angular_b.dot(&response.angular_b);
-            response.effective_mass = if k > 0.0 { 1.0 / k } else { 0.0 };
+            let response = response(&rows[r].jacobian, &a, &b);
             workspace.responses[r] = response;
             match warm_start {
                 WarmStart::On => {
@@ -182,45 +172,145 @@ fn sweep<P: Projection>(
     workspace: &mut PgsWorkspace,
     relaxation: f64,
 ) -> Result<f64, LcpError> {
+    let mut largest_change: f64 = 0.0;
+    for index in 0..problem.blocks.len() {
+        let rows = problem.blocks[index].rows.clone();
+        let change = update_block(problem, workspace, index, rows, relaxation)?;
+        largest_change = largest_change.max(change);
+    }
+    Ok(largest_change)
+}
+
+/// Updates the rows of block `index` once each, with the responses in `workspace.responses`
+/// at `responses` (the block's own, or the shock pass's); returns `max |Δλ|`.
+fn update_block<P: Projection>(
+    problem: &mut Problem<P>,
+    workspace: &mut PgsWorkspace,
+    index: usize,
+    responses: Range<usize>,
+    relaxation: f64,
+) -> Result<f64, LcpError> {
     let Problem {
         bodies,
         rows,
         blocks,
     } = problem;
-    let mut largest_change: f64 = 0.0;
-    for (index, block) in blocks.iter_mut().enumerate() {
-        let (ia, ib) = (block.body_a.0, block.body_b.0);
-        let rows = &mut rows[block.rows.clone()];
-        let responses = &workspace.responses[block.rows.clone()];
-        let velocity = &mut workspace.block_velocity[..rows.len()];
-        let impulse = &mut workspace.block_impulse[..rows.len()];
-        let applied = &mut workspace.block_applied[..rows.len()];
-        for (k, row) in rows.iter().enumerate() {
-            impulse[k] = row.impulse;
-            applied[k] = row.impulse;
-        }
-        for k in 0..rows.len() {
-            let w = rows[k].jacobian.velocity(&bodies[ia], &bodies[ib]);
-            velocity[k] = w;
-            impulse[k] += relaxation * responses[k].effective_mass * (rows[k].target - w);
-            block.projection.project(impulse, velocity, k);
-            for j in 0..rows.len() {
-                let delta = impulse[j] - applied[j];
-                if delta != 0.0 {
-                    if !delta.is_finite() {
-                        return Err(LcpError::NonFinite { block: index });
-                    }
-                    apply(bodies, ia, ib, &responses[j], delta);
-                    applied[j] = impulse[j];
+    let block = &mut blocks[index];
+    let (ia, ib) = (block.body_a.0, block.body_b.0);
+    let rows = &mut rows[block.rows.clone()];
+    let responses = &workspace.responses[responses];
+    let velocity = &mut workspace.block_velocity[..rows.len()];
+    let impulse = &mut workspace.block_impulse[..rows.len()];
+    let applied = &mut workspace.block_applied[..rows.len()];
+    for (k, row) in rows.iter().enumerate() {
+        impulse[k] = row.impulse;
+        applied[k] = row.impulse;
+    }
+    for k in 0..rows.len() {
+        let w = rows[k].jacobian.velocity(&bodies[ia], &bodies[ib]);
+        velocity[k] = w;
+        impulse[k] += relaxation * responses[k].effective_mass * (rows[k].target - w);
+        block.projection.project(impulse, velocity, k);
+        for j in 0..rows.len() {
+            let delta = impulse[j] - applied[j];
+            if delta != 0.0 {
+                if !delta.is_finite() {
+                    return Err(LcpError::NonFinite { block: index });
                 }
+                apply(bodies, ia, ib, &responses[j], delta);
+                applied[j] = impulse[j];
             }
         }
-        for (row, &new) in rows.iter_mut().zip(impulse.iter()) {
-            largest_change = largest_change.max((new - row.impulse).abs());
-            row.impulse = new;
-        }
+    }
+    let mut largest_change: f64 = 0.0;
+    for (row, &new) in rows.iter_mut().zip(impulse.iter()) {
+        largest_change = largest_change.max((new - row.impulse).abs());
+        row.impulse = new;
     }
     Ok(largest_change)
+}
+
+/// Which body of a block the shock pass holds still.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Support {
+    /// Body A carries body B.
+    A,
+    /// Body B carries body A.
+    B,
+}
+
+/// Shock propagation (Guendelman, Bridson and Fedkiw, 2003): one more Gauss–Seidel pass, after
+/// a solve, over the blocks in `order`, in which each block's supporting body is held still —
+/// only the other body's velocity changes. Run from the ground up, it sets every body to rest
+/// on the one below it exactly, so a stack's weight needs no sweeps to travel down; the price is
+/// that the supporting bodies do not feel this last pass's reactions (momentum is not
+/// conserved by it), which is why it is an option for stacking, not the default.
+///
+/// Errors as [`solve_in_place`], and [`LcpError::MalformedBlock`] for an `order` entry past the
+/// last block.
+pub fn shock_propagation<P: Projection>(
+    problem: &mut Problem<P>,
+    workspace: &mut PgsWorkspace,
+    order: &[(usize, Support)],
+) -> Result<(), LcpError> {
+    problem.validate()?;
+    let widest = problem
+        .blocks
+        .iter()
+        .map(|b| b.rows.len())
+        .max()
+        .unwrap_or(0);
+    for buffer in [
+        &mut workspace.block_velocity,
+        &mut workspace.block_impulse,
+        &mut workspace.block_applied,
+    ] {
+        buffer.resize(widest, 0.0);
+    }
+    for &(index, support) in order {
+        let block = problem
+            .blocks
+            .get(index)
+            .ok_or(LcpError::MalformedBlock { block: index })?;
+        let (mut a, mut b) = (
+            problem.bodies[block.body_a.0],
+            problem.bodies[block.body_b.0],
+        );
+        let held = match support {
+            Support::A => &mut a,
+            Support::B => &mut b,
+        };
+        held.inv_mass = 0.0;
+        held.inv_inertia_world = nalgebra::Matrix3::zeros();
+        // The block's responses with the supporting body immovable, after the solve's own.
+        let start = problem.rows.len();
+        workspace.responses.resize(start, RowResponse::default());
+        for r in block.rows.clone() {
+            workspace
+                .responses
+                .push(response(&problem.rows[r].jacobian, &a, &b));
+        }
+        let end = workspace.responses.len();
+        update_block(problem, workspace, index, start..end, 1.0)?;
+    }
+    Ok(())
+}
+
+/// How a unit impulse on a row with Jacobian `j` changes the velocities of `a` and `b`.
+fn response(j: &Jacobian, a: &SolverBody, b: &SolverBody) -> RowResponse {
+    let mut response = RowResponse {
+        linear_a: j.linear_a * a.inv_mass,
+        angular_a: a.inv_inertia_world * j.angular_a,
+        linear_b: j.linear_b * b.inv_mass,
+        angular_b: b.inv_inertia_world * j.angular_b,
+        effective_mass: 0.0,
+    };
+    let k = j.linear_a.dot(&response.linear_a)
+        + j.angular_a.dot(&response.angular_a)
+        + j.linear_b.dot(&response.linear_b)
+        + j.angular_b.dot(&response.angular_b);
+    response.effective_mass = if k > 0.0 { 1.0 / k } else { 0.0 };
+    response
 }
 
 /// `v += M⁻¹Jᵀ λ` for both bodies of a row.

@@ -1,6 +1,10 @@
 //! Scene files: JSON in, a validated [`World`] out (the format of DESIGN §6, extended
 //! compatibly).
 //!
+//! Beyond DESIGN §6's fields a scene may set `steps`, `solver` (`"pgs"` or `"direct"`),
+//! `warm_start` and `shock_propagation` (booleans, off by default), `friction_cone` (`"box"` or
+//! `"circle"`), `bias_rate` and `slop`.
+//!
 //! Every number is checked while it is read, so an invalid scene is rejected with the field's
 //! path and the line it is on — unknown fields, unknown shapes, non-finite numbers, sizes, masses
 //! or `dt` that are not positive, negative friction, malformed JSON — never a panic.
@@ -235,6 +239,7 @@ struct RawScene {
     model: Option<ModelName>,
     solver: Option<SolverName>,
     warm_start: Option<bool>,
+    shock_propagation: Option<bool>,
     friction_cone: Option<ConeName>,
     bias_rate: Option<NonNegative>,
     slop: Option<NonNegative>,
@@ -280,6 +285,7 @@ impl RawScene {
         if let Some(slop) = self.slop {
             settings.contact.slop = slop.0;
         }
+        settings.shock_propagation = self.shock_propagation == Some(true);
         Scene {
             gravity: self.gravity.map(vector).unwrap_or(Vector3::new(
                 0.0,

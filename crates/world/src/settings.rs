@@ -35,6 +35,11 @@ pub struct WorldSettings {
     /// Faces tilted by less than this (rad) from the contact plane count as flat, so a resting
     /// face keeps its full support polygon.
     pub feature_angle: f64,
+    /// After each PGS solve, one more pass from the ground up in which every contact's lower
+    /// body is held still ([`pgs::shock_propagation`](tatami_lcp::pgs::shock_propagation)):
+    /// stacks stand with few sweeps, at the price of momentum in that pass. Off by default (the
+    /// paper's solver).
+    pub shock_propagation: bool,
 }
 
 impl Default for WorldSettings {
@@ -45,6 +50,7 @@ impl Default for WorldSettings {
             contact: ContactSettings::default(),
             contact_margin: 0.005,
             feature_angle: 1f64.to_radians(),
+            shock_propagation: false,
         }
     }
 }

@@ -125,14 +125,16 @@ fn keep_within_angle(
     angle: f64,
     eps: f64,
 ) {
-    let slope = angle.tan();
+    // `height > |horizontal| · tan(angle) + eps`, squared to keep square roots out of the loop.
+    let slope_squared = angle.tan().powi(2);
     let mut kept = 0;
     for i in 0..points.len() {
         let v = points[i];
         let above = |u: &Point3<f64>| {
             let offset = u - v;
-            let height = offset.dot(direction);
-            height > (offset - direction * height).norm() * slope + eps
+            let height = offset.dot(direction) - eps;
+            let horizontal_squared = offset.norm_squared() - offset.dot(direction).powi(2);
+            height > 0.0 && height * height > horizontal_squared * slope_squared
         };
         let dominated = points[..kept].iter().chain(&points[i + 1..]).any(above);
         if !dominated {

@@ -3,9 +3,9 @@
 use std::ops::Range;
 use std::time::Instant;
 
-use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+use nalgebra::{Point3, Quaternion, UnitQuaternion, Vector3};
 use tatami_contact::{Contact, ContactProjection};
-use tatami_lcp::pgs::{self, PgsWorkspace, WarmStart};
+use tatami_lcp::pgs::{self, PgsWorkspace, Support, WarmStart};
 use tatami_lcp::{LcpError, Problem, direct};
 
 use crate::collision::{self, BodyGeometry, CollisionWorkspace};
@@ -44,6 +44,8 @@ pub struct World {
     collision_workspace: CollisionWorkspace,
     pgs_workspace: PgsWorkspace,
     warm_start: WarmStartCache,
+    /// Blocks from the ground up, each with the body that carries the other.
+    shock_order: Vec<(usize, Support)>,
     timings: StepTimings,
     time: f64,
     /// Kahan compensation of `time`, so a thousand steps of 0.01 s end at exactly 10 s.
@@ -69,6 +71,7 @@ impl World {
             collision_workspace: CollisionWorkspace::default(),
             pgs_workspace: PgsWorkspace::default(),
             warm_start: WarmStartCache::default(),
+            shock_order: Vec::new(),
             timings: StepTimings::default(),
             time: 0.0,
             time_compensation: 0.0,
@@ -284,8 +287,17 @@ impl World {
                         &mut self.problem,
                     );
                 }
-                let result =
-                    pgs::solve_in_place(&mut self.problem, &mut self.pgs_workspace, params);
+                let mut result =
+                    pgs::solve_in_place(&mut self.problem, &mut self.pgs_workspace, params)
+                        .map(drop);
+                if self.settings.shock_propagation && result.is_ok() {
+                    self.shock_order();
+                    result = pgs::shock_propagation(
+                        &mut self.problem,
+                        &mut self.pgs_workspace,
+                        &self.shock_order,
+                    );
+                }
                 if warm && result.is_ok() {
                     self.warm_start.store(
                         model,
@@ -294,7 +306,7 @@ impl World {
                         &self.problem,
                     );
                 }
-                result.map(drop)
+                result
             }
             Solver::Direct(params) => direct::solve(&mut self.problem, params).map(drop),
         };
@@ -317,6 +329,22 @@ impl World {
             .iter()
             .position(|blocks| blocks.contains(&block))?;
         Some(pair_name(&self.bodies, &self.contacts[index]))
+    }
+
+    /// The blocks from the lowest contact to the highest (contacts are kept highest first), each
+    /// with its body lower along gravity as the support.
+    fn shock_order(&mut self) {
+        self.shock_order.clear();
+        for (contact, blocks) in self.contacts.iter().zip(&self.contact_blocks).rev() {
+            let height = |c: &Point3<f64>| -c.coords.dot(&self.gravity);
+            let support = if height(&contact.centre_a) <= height(&contact.centre_b) {
+                Support::A
+            } else {
+                Support::B
+            };
+            self.shock_order
+                .extend(blocks.clone().map(|block| (block, support)));
+        }
     }
 
     /// Semi-implicit Euler: the solved velocities move the bodies; quaternions renormalised.

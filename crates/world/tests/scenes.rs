@@ -176,6 +176,19 @@ fn malformed_json_and_missing_files_are_errors() {
 }
 
 #[test]
+fn solver_options_are_read() {
+    let text = scene_with(
+        4,
+        r#"  "model": "face", "warm_start": true, "shock_propagation": true,"#,
+    );
+    let scene = Scene::from_json(&text).unwrap();
+    assert!(scene.settings.shock_propagation);
+    assert_eq!(scene.settings.model, tatami_world::ContactModel::Face);
+    let plain = Scene::from_json(&scene_with(0, "")).unwrap();
+    assert!(!plain.settings.shock_propagation, "off unless asked for");
+}
+
+#[test]
 fn every_example_scene_loads_and_runs() {
     let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes");
     let mut count = 0;

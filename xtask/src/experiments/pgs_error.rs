@@ -11,7 +11,7 @@ use std::time::Instant;
 
 use tatami_lcp::pgs::{self, PgsParams, PgsWorkspace};
 use tatami_lcp::{Problem, direct};
-use tatami_world::{ContactModel, DirectParams, Solver};
+use tatami_world::{ContactModel, DirectParams, Solver, WorldSettings};
 
 use super::chart::{self, Axis, Chart, Series, Stroke};
 use super::table::{Table, record};
@@ -51,9 +51,17 @@ pub fn run(
 ) -> Result<Outcome, String> {
     let template = scenes::TOWER.load()?;
     let dt = template.dt;
+    let settings = |model: ContactModel, solver: Solver| WorldSettings {
+        model,
+        solver,
+        ..template.settings
+    };
     let direct_solver = Solver::Direct(DirectParams::default());
-    let mut reference_world =
-        stack_timing::tower(&template, CUBES, direct_solver, ContactModel::Vertex)?;
+    let mut reference_world = stack_timing::tower(
+        &template,
+        CUBES,
+        settings(ContactModel::Vertex, direct_solver),
+    )?;
     let mut reference = reference_world
         .prepare_step(dt)
         .map_err(|e| e.to_string())?
@@ -78,7 +86,7 @@ pub fn run(
     let mut workspace = PgsWorkspace::default();
     for model in ContactModel::ALL {
         let pgs_solver = Solver::Pgs(PgsParams::default());
-        let mut world = stack_timing::tower(&template, CUBES, pgs_solver, model)?;
+        let mut world = stack_timing::tower(&template, CUBES, settings(model, pgs_solver))?;
         let problem = world.prepare_step(dt).map_err(|e| e.to_string())?.clone();
         let mut points = Vec::new();
         for &k in iterations {

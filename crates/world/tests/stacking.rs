@@ -1,0 +1,86 @@
+//! Tall stacks with shock propagation: the face model's tower stands still with a few sweeps,
+//! where plain Gauss–Seidel lets it sink; single-body physics is unchanged by the option.
+
+mod common;
+
+use common::{G, SIDE, cube, floor, run};
+use tatami_world::{ContactModel, PgsParams, Solver, World, WorldSettings};
+
+fn tower(cubes: usize, shock_propagation: bool) -> World {
+    let settings = WorldSettings {
+        model: ContactModel::Face,
+        solver: Solver::Pgs(PgsParams {
+            iterations: 4,
+            ..PgsParams::default()
+        }),
+        shock_propagation,
+        ..WorldSettings::default()
+    };
+    (0..cubes)
+        .fold(World::builder().settings(settings).body(floor()), |b, k| {
+            b.body(cube(
+                &format!("cube{k}"),
+                [0.0, 0.0, SIDE * (k as f64 + 0.5)],
+            ))
+        })
+        .build()
+        .unwrap()
+}
+
+/// How far the top cube moved in `seconds`, and the largest depth seen.
+fn settle(world: &mut World, seconds: f64) -> (f64, f64) {
+    let top = world.bodies().len() - 1;
+    let start = world.bodies()[top].position();
+    let mut deepest: f64 = 0.0;
+    run(world, seconds, |w| {
+        for c in w.contacts() {
+            deepest = c.depths.iter().fold(deepest, |m, &d| m.max(d));
+        }
+    });
+    ((world.bodies()[top].position() - start).norm(), deepest)
+}
+
+#[test]
+fn a_fifty_cube_tower_stands_still_with_four_sweeps() {
+    let (moved, deepest) = settle(&mut tower(50, true), 5.0);
+    // Each cube is set to rest on the one below every step: nothing sinks beyond round-off.
+    assert!(moved < 1e-6, "top cube moved {moved} m");
+    assert!(deepest < 1e-6, "penetration {deepest} m");
+    let (moved, _) = settle(&mut tower(50, false), 5.0);
+    assert!(
+        moved > 0.05,
+        "without the pass the tower sinks: moved only {moved} m"
+    );
+}
+
+#[test]
+fn a_spinning_cube_stops_at_the_same_rate_with_the_pass() {
+    // The floor carries the cube whatever the pass does: the torsional-friction closed form
+    // (6 μ g r̄ / a², r̄ = a(√2 + ln(1 + √2))/6) holds as without it (face_model.rs).
+    let mu = 0.5;
+    let settings = WorldSettings {
+        model: ContactModel::Face,
+        shock_propagation: true,
+        ..WorldSettings::default()
+    };
+    let mut world = World::builder()
+        .settings(settings)
+        .body(floor().friction(mu))
+        .body(
+            cube("cube", [0.0, 0.0, SIDE / 2.0])
+                .friction(mu)
+                .angular_velocity([0.0, 0.0, 5.0]),
+        )
+        .build()
+        .unwrap();
+    let r_bar = SIDE * (2f64.sqrt() + (1.0 + 2f64.sqrt()).ln()) / 6.0;
+    let rate = 6.0 * mu * G * r_bar / (SIDE * SIDE);
+    run(&mut world, 0.5, |_| {});
+    let expected = 5.0 - rate * 0.5;
+    let spin = world.bodies()[1].angular_velocity().z;
+    // 2%: the tolerance of the same closed form without the pass.
+    assert!(
+        (spin - expected).abs() < 0.02 * 5.0,
+        "ω = {spin}, expected {expected}"
+    );
+}
