@@ -177,7 +177,11 @@ fn fan_triangle_distance_integral(c: &Point2<f64>, a: &Point2<f64>, b: &Point2<f
         return 0.0;
     }
     let (s1, s2) = ((a - c).dot(&t), (b - c).dot(&t));
-    let primitive = |s: f64| d * s * s.hypot(d) + d.powi(3) * (s / d).asinh();
+    // asinh(s/d) = sign(s) ln((|s| + r)/d) with r = √(s² + d²), which the first term needs too.
+    let primitive = |s: f64| {
+        let r = (s * s + d * d).sqrt();
+        d * s * r + d.powi(3) * ((s.abs() + r) / d).ln().copysign(s)
+    };
     signed_d.signum() * (primitive(s2) - primitive(s1)) / 6.0
 }
 

@@ -1,7 +1,9 @@
 //! Collision: broad phase, parry's contact normal, support polygons, and the contacts the
 //! contact models consume. Plain data in, plain data out, so it can be run and timed alone.
 
-use nalgebra::{Point3, Vector3};
+use std::collections::HashMap;
+
+use nalgebra::{Point3, UnitQuaternion, Vector3};
 use tatami_contact::{Contact, Material};
 use tatami_lcp::BodyId;
 
@@ -19,6 +21,29 @@ pub(crate) struct CollisionWorkspace {
     pairs: Vec<(usize, usize)>,
     feature_a: Vec<Point3<f64>>,
     feature_b: Vec<Point3<f64>>,
+    /// Each touching pair's contact with the poses it was computed at, and the settings.
+    cache: HashMap<(usize, usize), Cached>,
+    cached_with: (f64, f64),
+}
+
+/// Largest motion of either body (m; a turn counts as rad × the body's size) since a pair's
+/// contact was computed for it to be reused: far below any depth that matters (the slop is
+/// 2 mm), and above the round-off by which a resting body drifts.
+pub(crate) const REUSE_TOLERANCE: f64 = 1e-9;
+
+/// A contact and where its two bodies were when it was computed.
+#[derive(Debug, Clone)]
+struct Cached {
+    contact: Contact,
+    poses: [(Point3<f64>, UnitQuaternion<f64>); 2],
+    /// Whether the pair was met by the current call (stale entries are dropped at its end).
+    seen: bool,
+}
+
+/// Whether `body` is within [`REUSE_TOLERANCE`] of `pose`.
+fn still_at(body: &Body, size: f64, pose: &(Point3<f64>, UnitQuaternion<f64>)) -> bool {
+    (body.centre - pose.0).norm() <= REUSE_TOLERANCE
+        && body.rotation.angle_to(&pose.1) * size.max(1.0) <= REUSE_TOLERANCE
 }
 
 /// A body's collision data, built once when the body is added.
@@ -38,6 +63,10 @@ pub(crate) fn detect(
     contacts: &mut Vec<Contact>,
 ) {
     contacts.clear();
+    if workspace.cached_with != (margin, feature_angle) {
+        workspace.cache.clear();
+        workspace.cached_with = (margin, feature_angle);
+    }
     let poses: Vec<_> = bodies
         .iter()
         .map(|b| parry_bridge::pose(&b.position(), &b.rotation))
@@ -61,6 +90,16 @@ pub(crate) fn detect(
     );
     for &(i, j) in &workspace.pairs {
         let (a, b) = (&bodies[i], &bodies[j]);
+        // A pair that has not moved since its contact was computed keeps it: the same input
+        // gives the same output, and a resting stack's pairs are computed once.
+        if let Some(cached) = workspace.cache.get_mut(&(i, j))
+            && still_at(a, geometry[i].outline.size(), &cached.poses[0])
+            && still_at(b, geometry[j].outline.size(), &cached.poses[1])
+        {
+            cached.seen = true;
+            contacts.push(cached.contact.clone());
+            continue;
+        }
         let Some(normal) = parry_bridge::contact_normal(
             &geometry[i].collider,
             &poses[i],
@@ -87,7 +126,7 @@ pub(crate) fn detect(
         let Some(s) = support(&workspace.feature_a, &workspace.feature_b, &normal) else {
             continue;
         };
-        contacts.push(Contact {
+        let contact = Contact {
             body_a: BodyId(i),
             body_b: BodyId(j),
             centre_a: a.centre,
@@ -96,8 +135,20 @@ pub(crate) fn detect(
             support: s.polygon,
             depths: s.depths,
             material: combine(a, b),
-        });
+        };
+        workspace.cache.insert(
+            (i, j),
+            Cached {
+                contact: contact.clone(),
+                poses: [(a.centre, a.rotation), (b.centre, b.rotation)],
+                seen: true,
+            },
+        );
+        contacts.push(contact);
     }
+    workspace
+        .cache
+        .retain(|_, cached| std::mem::take(&mut cached.seen));
 }
 
 /// The pair's material: the average of the two bodies' coefficients.

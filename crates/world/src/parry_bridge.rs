@@ -7,8 +7,8 @@
 
 use nalgebra::{Matrix3, Point3, UnitQuaternion, Vector3};
 use parry3d_f64::math::{Pose, Rotation, Vector};
-use parry3d_f64::query::{ContactManifold, DefaultQueryDispatcher, PersistentQueryDispatcher};
-use parry3d_f64::shape::{ConvexPolyhedron, SharedShape};
+use parry3d_f64::query::{ContactManifold, DefaultQueryDispatcher, PersistentQueryDispatcher, sat};
+use parry3d_f64::shape::{ConvexPolyhedron, Cuboid, SharedShape};
 
 use crate::shape::{MassProperties, Shape};
 
@@ -95,6 +95,10 @@ pub(crate) fn contact_normal(
 ) -> Option<Vector3<f64>> {
     let (pose_a, pose_b) = (*pose_a * a.local, *pose_b * b.local);
     let pos_ba = pose_b.inverse() * pose_a;
+    if let (Some(box_b), Some(box_a)) = (b.shape.as_cuboid(), a.shape.as_cuboid()) {
+        return cuboid_normal(box_b, box_a, &pos_ba, prediction)
+            .map(|local| from_glam(pose_b.rotation * local).normalize());
+    }
     let mut manifolds: Vec<ContactManifold<(), ()>> = Vec::new();
     DefaultQueryDispatcher
         .contact_manifolds(
@@ -110,6 +114,21 @@ pub(crate) fn contact_normal(
     let normal = from_glam(pose_b.rotation * manifold.local_n1);
     let length = normal.norm();
     (length.is_finite() && length > 0.0).then(|| normal / length)
+}
+
+/// The separating axis of two boxes (in box 1's frame, pointing out of box 1) by parry's SAT:
+/// the face normals of either box and the edge–edge axes, the one of largest separation — the
+/// axis parry's cuboid manifold uses, without building the manifold's contact points, which
+/// [`crate::support`] replaces with the full support polygon. `None` beyond `prediction`.
+fn cuboid_normal(box1: &Cuboid, box2: &Cuboid, pos12: &Pose, prediction: f64) -> Option<Vector> {
+    let pos21 = pos12.inverse();
+    let faces1 = sat::cuboid_cuboid_find_local_separating_normal_oneway(box1, box2, pos12);
+    let faces2 = sat::cuboid_cuboid_find_local_separating_normal_oneway(box2, box1, &pos21);
+    let edges = sat::cuboid_cuboid_find_local_separating_edge_twoway(box1, box2, pos12);
+    let best = [faces1, (faces2.0, pos12.rotation * -faces2.1), edges]
+        .into_iter()
+        .reduce(|best, axis| if axis.0 > best.0 { axis } else { best })?;
+    (best.0 <= prediction).then_some(best.1)
 }
 
 fn glam_points(points: &[Point3<f64>]) -> Vec<Vector> {

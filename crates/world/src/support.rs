@@ -47,6 +47,17 @@ impl Outline {
         Self::Polyhedron { vertices, radius }
     }
 
+    /// Largest distance of the outline from the body's origin (m).
+    pub(crate) fn size(&self) -> f64 {
+        match self {
+            Self::Polyhedron { radius, .. } | Self::Sphere { radius } => *radius,
+            Self::Cylinder {
+                radius,
+                half_height,
+            } => radius.hypot(*half_height),
+        }
+    }
+
     /// World points of the feature furthest along `direction` (unit): the vertices no other
     /// vertex lies above more steeply than `angle`, so faces tilted by less than `angle` count as
     /// flat whatever the body's size.
@@ -215,9 +226,10 @@ impl Surface {
                     rhs += row * h;
                 }
                 let ridge = 1e-12 * normal_matrix.trace();
+                // Symmetric positive definite with the ridge: Cholesky is the cheap exact solve.
                 let solved = (normal_matrix + Matrix3::identity() * ridge)
-                    .lu()
-                    .solve(&rhs)?;
+                    .cholesky()?
+                    .solve(&rhs);
                 Vector3::new(
                     solved.x - solved.y * c.x - solved.z * c.y,
                     solved.y,

@@ -84,3 +84,41 @@ fn a_spinning_cube_stops_at_the_same_rate_with_the_pass() {
         "ω = {spin}, expected {expected}"
     );
 }
+
+#[test]
+fn contacts_kept_for_resting_pairs_match_contacts_computed_afresh() {
+    // The resting tower reuses each pair's contact while neither body moves by more than
+    // 1e-9 m; a world rebuilt at the final state computes them again from scratch.
+    let mut world = tower(10, true);
+    run(&mut world, 1.0, |_| {});
+    let kept = world.prepare_step(common::DT).unwrap().rows.len();
+    let kept_contacts = world.contacts().to_vec();
+    let mut fresh = world
+        .bodies()
+        .iter()
+        .fold(World::builder().settings(*world.settings()), |b, body| {
+            let desc = if body.is_fixed() {
+                tatami_world::BodyDesc::fixed(body.shape().clone())
+            } else {
+                tatami_world::BodyDesc::dynamic(body.shape().clone()).mass(body.mass())
+            };
+            let p = body.position();
+            b.body(
+                desc.name(body.name())
+                    .position([p.x, p.y, p.z])
+                    .rotation(body.rotation()),
+            )
+        })
+        .build()
+        .unwrap();
+    assert_eq!(fresh.prepare_step(common::DT).unwrap().rows.len(), kept);
+    for (a, b) in kept_contacts.iter().zip(fresh.contacts()) {
+        assert_eq!((a.body_a, a.body_b), (b.body_a, b.body_b));
+        for (x, y) in a.depths.iter().zip(&b.depths) {
+            assert!((x - y).abs() < 1e-8, "depth {x} kept, {y} afresh");
+        }
+        for (p, q) in a.support.vertices().iter().zip(b.support.vertices()) {
+            assert!((p - q).norm() < 1e-8, "vertex {p} kept, {q} afresh");
+        }
+    }
+}
