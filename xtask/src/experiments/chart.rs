@@ -75,6 +75,20 @@ pub fn model_colour(model: tatami_world::ContactModel) -> RGBColor {
     }
 }
 
+/// The axes of an angular-speed-per-step chart: steps (labelled `step_label`) and |ω|.
+pub fn angular_speed_axes(step_label: &str) -> (Axis<'_>, Axis<'static>) {
+    (
+        Axis {
+            label: step_label,
+            log: false,
+        },
+        Axis {
+            label: "|ω| (rad/s)",
+            log: false,
+        },
+    )
+}
+
 /// Colour of closed forms and references.
 pub const REFERENCE: RGBColor = RGBColor(0, 0, 0);
 

@@ -11,7 +11,7 @@ use std::f64::consts::{FRAC_PI_4, SQRT_2};
 
 use tatami_world::ContactModel;
 
-use super::chart::{self, Axis, Chart, Series, Stroke};
+use super::chart::{self, Chart, Series, Stroke};
 use super::table::write_angular_speeds;
 use super::{Outcome, Progress, scenes};
 
@@ -122,16 +122,12 @@ pub fn run(out: &std::path::Path, progress: &Progress) -> Result<Outcome, String
         stroke: Stroke::Dashed,
         colour: chart::REFERENCE,
     });
+    let step_label = format!("step (dt = {} s)", scene.dt);
+    let (step_axis, speed_axis) = chart::angular_speed_axes(&step_label);
     Chart {
         title: "Toppling over an edge: angular speed per step",
-        x: Axis {
-            label: "step (dt = 0.01 s)",
-            log: false,
-        },
-        y: Axis {
-            label: "|ω| (rad/s)",
-            log: false,
-        },
+        x: step_axis,
+        y: speed_axis,
         series,
         legend: chart::Legend::UpperRight,
     }

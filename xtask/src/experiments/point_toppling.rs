@@ -6,7 +6,7 @@
 
 use tatami_world::ContactModel;
 
-use super::chart::{self, Axis, Chart, Series, Stroke};
+use super::chart::{self, Chart, Series, Stroke};
 use super::table::write_angular_speeds;
 use super::{Outcome, Progress, scenes};
 
@@ -47,16 +47,12 @@ pub fn run(out: &std::path::Path, progress: &Progress) -> Result<Outcome, String
         .map(|t| (t.model.name(), t.omega.as_slice()))
         .collect();
     write_angular_speeds(out, FILE, scene.dt, &written)?;
+    let step_label = format!("step (dt = {} s)", scene.dt);
+    let (step_axis, speed_axis) = chart::angular_speed_axes(&step_label);
     Chart {
         title: "Toppling from a corner: angular speed per step",
-        x: Axis {
-            label: "step (dt = 0.01 s)",
-            log: false,
-        },
-        y: Axis {
-            label: "|ω| (rad/s)",
-            log: false,
-        },
+        x: step_axis,
+        y: speed_axis,
         series: traces
             .iter()
             .map(|t| Series {
