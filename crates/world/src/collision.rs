@@ -1,5 +1,7 @@
 //! Collision: broad phase, parry's contact normal, support polygons, and the contacts the
-//! contact models consume. Plain data in, plain data out, so it can be run and timed alone.
+//! contact models consume. Plain data in, plain data out, so it can be run and timed alone; the
+//! workspace keeps each pair's contact, reused while neither body moves by more than
+//! [`REUSE_TOLERANCE`].
 
 use std::collections::HashMap;
 

@@ -89,6 +89,20 @@ pub fn angular_speed_axes(step_label: &str) -> (Axis<'_>, Axis<'static>) {
     )
 }
 
+/// A contact model's angular speed per step, as a solid line in the model's colour.
+pub fn speed_per_step(model: tatami_world::ContactModel, omega: &[f64]) -> Series {
+    Series {
+        name: model.name().to_owned(),
+        points: omega
+            .iter()
+            .enumerate()
+            .map(|(n, &w)| (n as f64, w))
+            .collect(),
+        stroke: Stroke::Line,
+        colour: model_colour(model),
+    }
+}
+
 /// Colour of closed forms and references.
 pub const REFERENCE: RGBColor = RGBColor(0, 0, 0);
 

@@ -101,16 +101,7 @@ pub fn run(out: &std::path::Path, progress: &Progress) -> Result<Outcome, String
     let shown = landing.map_or(scene.steps, |n| (2 * n).min(scene.steps));
     let mut series: Vec<Series> = traces
         .iter()
-        .map(|t| Series {
-            name: t.model.name().to_owned(),
-            points: t.omega[..=shown]
-                .iter()
-                .enumerate()
-                .map(|(n, &w)| (n as f64, w))
-                .collect(),
-            stroke: Stroke::Line,
-            colour: chart::model_colour(t.model),
-        })
+        .map(|t| chart::speed_per_step(t.model, &t.omega[..=shown]))
         .collect();
     series.push(Series {
         name: "closed form (pivot without slip)".to_owned(),

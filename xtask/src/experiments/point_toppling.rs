@@ -6,7 +6,7 @@
 
 use tatami_world::ContactModel;
 
-use super::chart::{self, Chart, Series, Stroke};
+use super::chart::{self, Chart};
 use super::table::write_angular_speeds;
 use super::{Outcome, Progress, scenes};
 
@@ -55,17 +55,7 @@ pub fn run(out: &std::path::Path, progress: &Progress) -> Result<Outcome, String
         y: speed_axis,
         series: traces
             .iter()
-            .map(|t| Series {
-                name: t.model.name().to_owned(),
-                points: t
-                    .omega
-                    .iter()
-                    .enumerate()
-                    .map(|(n, &w)| (n as f64, w))
-                    .collect(),
-                stroke: Stroke::Line,
-                colour: chart::model_colour(t.model),
-            })
+            .map(|t| chart::speed_per_step(t.model, &t.omega))
             .collect(),
         legend: chart::Legend::UpperLeft,
     }
