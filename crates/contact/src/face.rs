@@ -2,7 +2,8 @@
 //! per contact face at the support polygon's centroid `G`, rows `(f3, f1, f2, τ1, τ2, τ3)` with
 //! target relative twist 0, kept physical by [`FaceProjection`]:
 //!
-//! 1. `f3 ≥ 0`; friction `|f1|, |f2| ≤ μ f3` (box) or `|(f1, f2)| ≤ μ f3` (circle);
+//! 1. `f3 ≥ 0`; friction `|(f1, f2)| ≤ μ f3` (the isotropic default) or `|f1|, |f2| ≤ μ f3`
+//!    (the paper's eq. 4 box);
 //! 2. twist `|τ3| ≤ μ f3 r̄`, `r̄` the mean distance of the polygon from `G` (exact);
 //! 3. tilt: the centre of pressure `p = (−τ2, τ1) / f3` (relative to `G`) must lie in the
 //!    polygon; if not, it moves to the nearest point `p̂` and `τ1 = p̂_y f3`, `τ2 = −p̂_x f3`.
@@ -22,6 +23,7 @@ pub const ROWS: usize = 6;
 
 /// Row indices within a face block.
 const NORMAL: usize = 0;
+const FRICTION_1: usize = 1;
 const TILT_1: usize = 3;
 const TILT_2: usize = 4;
 const TWIST: usize = 5;
@@ -79,7 +81,7 @@ impl FaceProjection {
 }
 
 impl Projection for FaceProjection {
-    fn project(&mut self, impulses: &mut [f64], _row_velocity: &[f64], changed: usize) {
+    fn project(&mut self, impulses: &mut [f64], changed: usize) {
         impulses[NORMAL] = impulses[NORMAL].max(0.0);
         let f3 = impulses[NORMAL];
         self.cone.clamp(&mut impulses[1..3], self.friction * f3);
@@ -93,11 +95,15 @@ impl Projection for FaceProjection {
             }
         }
         let twist = self.twist_per_normal * f3;
-        impulses[TWIST] = impulses[TWIST].clamp(-twist, twist);
+        impulses[TWIST] = impulses[TWIST].max(-twist).min(twist);
         // The centre of pressure moves only when f3 or a tilt torque changed.
         if matches!(changed, NORMAL | TILT_1 | TILT_2) || self.remove_parallel_torque {
             self.clamp_zmp(impulses);
         }
+    }
+
+    fn tangent_pair(&self) -> Option<usize> {
+        self.cone.tangent_pair(FRICTION_1)
     }
 
     /// Only the normal row is a plain bound: the torques' ZMP constraint is not a product of row

@@ -67,4 +67,7 @@ pub use material::Material;
 pub use model::ContactModel;
 pub use point_friction::PointFriction;
 pub use projection::ContactProjection;
-pub use settings::{ContactSettings, FrictionCone, TwistRadius};
+pub use settings::{
+    ContactSettings, DEFAULT_BIAS_RATE, DEFAULT_MAX_DEPENETRATION_SPEED, DEFAULT_SLOP,
+    FrictionCone, TwistRadius,
+};

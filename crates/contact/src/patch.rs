@@ -24,7 +24,7 @@ pub struct PatchProjection {
 }
 
 impl Projection for PatchProjection {
-    fn project(&mut self, impulses: &mut [f64], _row_velocity: &[f64], _changed: usize) {
+    fn project(&mut self, impulses: &mut [f64], _changed: usize) {
         let k = self.distances.len();
         let (normals, friction) = impulses.split_at_mut(k);
         let mut total = 0.0;
@@ -36,7 +36,11 @@ impl Projection for PatchProjection {
         }
         self.cone.clamp(&mut friction[..2], self.friction * total);
         let twist = self.twist_friction * moment;
-        friction[2] = friction[2].clamp(-twist, twist);
+        friction[2] = friction[2].max(-twist).min(twist);
+    }
+
+    fn tangent_pair(&self) -> Option<usize> {
+        self.cone.tangent_pair(self.distances.len())
     }
 
     /// The normal rows are plain bounds; the friction rows are bounded by a sum of normals, which

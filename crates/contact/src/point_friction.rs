@@ -14,10 +14,14 @@ pub struct PointFriction {
 }
 
 impl Projection for PointFriction {
-    fn project(&mut self, impulses: &mut [f64], _row_velocity: &[f64], _changed: usize) {
+    fn project(&mut self, impulses: &mut [f64], _changed: usize) {
         impulses[0] = impulses[0].max(0.0);
         let limit = self.coefficient * impulses[0];
         self.cone.clamp(&mut impulses[1..3], limit);
+    }
+
+    fn tangent_pair(&self) -> Option<usize> {
+        self.cone.tangent_pair(1)
     }
 
     /// The box cone as row bounds; the circular cone is not a product of row bounds.
@@ -44,7 +48,7 @@ mod tests {
             cone: FrictionCone::Circle,
         };
         let mut impulses = [2.0, 3.0, 4.0];
-        p.project(&mut impulses, &[0.0; 3], 1);
+        p.project(&mut impulses, 1);
         assert!((impulses[1].hypot(impulses[2]) - 1.0).abs() < 1e-12);
         assert!(
             (impulses[1] / impulses[2] - 0.75).abs() < 1e-12,
@@ -59,10 +63,10 @@ mod tests {
             cone: FrictionCone::Box,
         };
         let mut impulses = [2.0, 3.0, -0.4];
-        p.project(&mut impulses, &[0.0; 3], 1);
+        p.project(&mut impulses, 1);
         assert_eq!(impulses, [2.0, 1.0, -0.4]);
         let mut pulling = [-1.0, 3.0, -0.4];
-        p.project(&mut pulling, &[0.0; 3], 0);
+        p.project(&mut pulling, 0);
         assert_eq!(pulling, [0.0, 0.0, 0.0]);
     }
 }

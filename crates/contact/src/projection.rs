@@ -18,11 +18,19 @@ pub enum ContactProjection {
 }
 
 impl Projection for ContactProjection {
-    fn project(&mut self, impulses: &mut [f64], row_velocity: &[f64], changed: usize) {
+    fn project(&mut self, impulses: &mut [f64], changed: usize) {
         match self {
-            Self::Point(p) => p.project(impulses, row_velocity, changed),
-            Self::Patch(p) => p.project(impulses, row_velocity, changed),
-            Self::Face(p) => p.project(impulses, row_velocity, changed),
+            Self::Point(p) => p.project(impulses, changed),
+            Self::Patch(p) => p.project(impulses, changed),
+            Self::Face(p) => p.project(impulses, changed),
+        }
+    }
+
+    fn tangent_pair(&self) -> Option<usize> {
+        match self {
+            Self::Point(p) => p.tangent_pair(),
+            Self::Patch(p) => p.tangent_pair(),
+            Self::Face(p) => p.tangent_pair(),
         }
     }
 

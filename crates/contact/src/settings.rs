@@ -1,24 +1,38 @@
 //! Settings shared by every contact model: penetration bias, restitution, friction switching.
 
 /// Shape of the friction bound at a point.
+///
+/// Decision record: the circle is the default because Coulomb friction is isotropic — a box
+/// sliding diagonally must keep its heading and stop at `v²/(2μg)` whatever the orientation of
+/// the contact frame's tangents, which are arbitrary. The pyramid bounds each tangent apart, so
+/// it lets a diagonal slide up to √2 μ f3 of friction and turns it towards an axis; it stays for
+/// reproducing the paper and for the direct solver, whose problem must be linear.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum FrictionCone {
-    /// `|f1| ≤ μ f3` and `|f2| ≤ μ f3` separately (the paper's eq. 4): a pyramid, linear, so the
-    /// direct solver handles it exactly.
-    #[default]
+    /// `|f1| ≤ μ f3` and `|f2| ≤ μ f3` separately (the paper's eq. 4): a pyramid aligned with
+    /// the tangents, linear, so the direct solver handles it exactly. PGS updates and clamps
+    /// each tangent row alone, the projected Gauss–Seidel of that pyramid.
     Box,
-    /// `|(f1, f2)| ≤ μ f3`: isotropic; PGS only.
+    /// `|(f1, f2)| ≤ μ f3`: isotropic Coulomb friction (default). PGS updates the two tangent
+    /// rows together and scales them onto the disc (see `tatami_lcp::pgs`).
+    #[default]
     Circle,
 }
 
 impl FrictionCone {
+    /// The first tangent row of a block whose tangent rows start at `first`, if PGS must
+    /// update the pair together ([`tatami_lcp::Projection::tangent_pair`]): for the circle.
+    pub fn tangent_pair(self, first: usize) -> Option<usize> {
+        (self == Self::Circle).then_some(first)
+    }
+
     /// Bounds the tangential impulse `tangential = [f1, f2]` by `limit` (already `μ` times the
     /// normal impulse): each axis for the box, the magnitude (direction kept) for the circle.
     pub fn clamp(self, tangential: &mut [f64], limit: f64) {
         match self {
             Self::Box => {
                 for f in &mut tangential[..2] {
-                    *f = f.clamp(-limit, limit);
+                    *f = f.max(-limit).min(limit);
                 }
             }
             Self::Circle => {
@@ -45,19 +59,38 @@ pub enum TwistRadius {
     },
 }
 
+/// Fraction of the depth beyond the slop that the normal row's target removes per step. Default
+/// 0.1 (Springhead's).
+pub const DEFAULT_BIAS_RATE: f64 = 0.1;
+
+/// Penetration left uncorrected (m). Default 2 mm (Springhead's), so resting contacts stay
+/// touching.
+pub const DEFAULT_SLOP: f64 = 0.002;
+
+/// Fastest separation (m/s) the penetration bias may ask for. Default 1 m/s, within the
+/// 1–3 m/s of Box2D's contact push speed: bodies created overlapping separate over a few steps
+/// instead of being thrown apart at `bias_rate · depth / dt` (0.1 · 0.5 m / 0.01 s = 5 m/s for two
+/// coincident unit cubes), and a resting contact, whose depth stays near the slop, never reaches
+/// it. Restitution is not capped.
+pub const DEFAULT_MAX_DEPENETRATION_SPEED: f64 = 1.0;
+
 /// How contact rows turn depth, approach speed and slip into targets and bounds.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactSettings {
-    /// Fraction of the depth beyond `slop` removed per step by the normal row's target.
+    /// Fraction of the depth beyond `slop` removed per step by the normal row's target; see
+    /// [`DEFAULT_BIAS_RATE`].
     pub bias_rate: f64,
-    /// Penetration left uncorrected, so resting contacts stay touching (m).
+    /// Penetration left uncorrected (m); see [`DEFAULT_SLOP`].
     pub slop: f64,
+    /// Cap on the penetration bias's separation speed (m/s); see
+    /// [`DEFAULT_MAX_DEPENETRATION_SPEED`].
+    pub max_depenetration_speed: f64,
     /// Approach speed above which restitution applies (m/s).
     pub restitution_threshold: f64,
     /// Slip speed above which a contact uses kinetic friction (m/s). For twist the slip speed is
     /// the twist rate times `r̄`.
     pub slip_threshold: f64,
-    /// Friction bound at each point.
+    /// Friction bound at each point; isotropic by default ([`FrictionCone`]).
     pub friction_cone: FrictionCone,
     /// Face model: how `r̄` is computed.
     pub twist_radius: TwistRadius,
@@ -67,15 +100,16 @@ pub struct ContactSettings {
 }
 
 impl Default for ContactSettings {
-    /// Springhead's bias (rate 0.1 beyond 2 mm), Box2D's 1 m/s restitution threshold, kinetic
-    /// friction above 1 mm/s of slip, box friction, exact `r̄`.
+    /// Springhead's bias (rate 0.1 beyond 2 mm) capped at 1 m/s, Box2D's 1 m/s restitution
+    /// threshold, kinetic friction above 1 mm/s of slip, isotropic friction, exact `r̄`.
     fn default() -> Self {
         Self {
-            bias_rate: 0.1,
-            slop: 0.002,
+            bias_rate: DEFAULT_BIAS_RATE,
+            slop: DEFAULT_SLOP,
+            max_depenetration_speed: DEFAULT_MAX_DEPENETRATION_SPEED,
             restitution_threshold: 1.0,
             slip_threshold: 1e-3,
-            friction_cone: FrictionCone::Box,
+            friction_cone: FrictionCone::Circle,
             twist_radius: TwistRadius::Exact,
             remove_parallel_torque: false,
         }

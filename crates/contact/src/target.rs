@@ -5,7 +5,8 @@ use crate::ContactSettings;
 /// Target separation speed of a normal row at a point with `depth` (> 0 overlapping, < 0 apart)
 /// approaching at `normal_speed` (< 0 closing) before the step's forces.
 ///
-/// - overlap beyond the slop: push apart at `bias_rate · (depth − slop) / dt`;
+/// - overlap beyond the slop: push apart at `bias_rate · (depth − slop) / dt`, at most
+///   `max_depenetration_speed`;
 /// - a gap: the row may close it in this step but not more (`depth / dt`, negative);
 /// - closing faster than the restitution threshold: bounce at `−e · normal_speed` if larger.
 pub(crate) fn normal_target(
@@ -16,7 +17,7 @@ pub(crate) fn normal_target(
     settings: &ContactSettings,
 ) -> f64 {
     let bias = if depth > settings.slop {
-        settings.bias_rate * (depth - settings.slop) / dt
+        (settings.bias_rate * (depth - settings.slop) / dt).min(settings.max_depenetration_speed)
     } else if depth < 0.0 {
         depth / dt
     } else {
@@ -39,6 +40,18 @@ mod tests {
         assert_eq!(normal_target(0.001, 0.0, 0.0, 0.01, &s), 0.0);
         // 0.1 · (0.012 − 0.002) / 0.01 = 0.1 m/s.
         assert!((normal_target(0.012, 0.0, 0.0, 0.01, &s) - 0.1).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_deep_overlap_separates_no_faster_than_the_cap() {
+        let s = ContactSettings::default();
+        // 0.1 · (0.5 − 0.002) / 0.01 = 4.98 m/s uncapped.
+        assert_eq!(
+            normal_target(0.5, 0.0, 0.0, 0.01, &s),
+            s.max_depenetration_speed
+        );
+        // Restitution is not a depenetration and keeps its speed.
+        assert!((normal_target(0.5, -4.0, 1.0, 0.01, &s) - 4.0).abs() < 1e-12);
     }
 
     #[test]

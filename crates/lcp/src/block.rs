@@ -1,6 +1,7 @@
 //! Blocks (one contact's rows) and the projection trait the contact models implement.
 //!
-//! PGS updates a block's rows one at a time; after each update it calls the block's
+//! PGS updates a block's rows one at a time (a friction pair named by
+//! [`Projection::tangent_pair`] as one 2-D update); after each update it calls the block's
 //! [`Projection::project`], naming the row that changed, and pushes whatever the projection moved
 //! into the velocities. The block's impulses are thus admissible after every update, so the next
 //! row never reacts to an impulse that is about to be clamped away (projecting only once per
@@ -53,10 +54,20 @@ pub enum RowBound {
 
 /// How a block's impulses are mapped onto its admissible set during a sweep.
 pub trait Projection {
-    /// Projects `impulses` (the block's rows, in order) in place after row `changed` was updated.
-    /// `row_velocity[k]` is row `k`'s velocity `w` measured just before its latest update (current
-    /// for `changed`), for choices that depend on motion such as static or kinetic friction.
-    fn project(&mut self, impulses: &mut [f64], row_velocity: &[f64], changed: usize);
+    /// Projects `impulses` (the block's rows, in order) in place after row `changed` was updated
+    /// (for a [`tangent_pair`](Projection::tangent_pair), `changed` is its first row).
+    fn project(&mut self, impulses: &mut [f64], changed: usize);
+
+    /// The first of two rows (`k`, `k + 1`) that PGS updates together, as one 2-D step, before
+    /// projecting: the two tangent rows of an isotropic friction disc. `None` (the default)
+    /// updates every row alone, which is right for bounds that are a product of row bounds.
+    ///
+    /// Updating the pair row by row and then clamping the disc lets the first row take the whole
+    /// friction budget: the fixed point is off the slip direction. See [`crate::pgs`] for the
+    /// 2-D step and why its fixed point is Coulomb's maximal dissipation.
+    fn tangent_pair(&self) -> Option<usize> {
+        None
+    }
 
     /// Row `row`'s bound, if the admissible set is a product of row bounds; `None` otherwise
     /// (the direct solver then rejects the block).
@@ -93,7 +104,7 @@ pub fn project_to_bounds(bound_of: impl Fn(usize) -> Option<RowBound>, impulses:
 pub struct BoundsProjection(pub Vec<RowBound>);
 
 impl Projection for BoundsProjection {
-    fn project(&mut self, impulses: &mut [f64], _row_velocity: &[f64], _changed: usize) {
+    fn project(&mut self, impulses: &mut [f64], _changed: usize) {
         project_to_bounds(|k| self.0.get(k).copied(), impulses);
     }
 

@@ -1,15 +1,29 @@
 //! Projected Gauss–Seidel by sequential impulses: prepare → sweep → store.
 //!
-//! Prepare computes, per row, `M⁻¹Jᵀ` (how a unit impulse changes A's and B's velocities) and the
-//! effective mass `m = 1/(J M⁻¹ Jᵀ)`; `A` is never formed. A sweep visits blocks in order and,
-//! in each block, rows in order (the contact models put normal rows first, then friction, then
-//! the face model's torques, as the paper's Springhead does):
+//! Prepare computes, per row, `M⁻¹Jᵀ` (how a unit impulse changes A's and B's velocities) and
+//! `k = J M⁻¹ Jᵀ` (the effective mass is `1/k`); `A` is never formed. A sweep visits blocks in
+//! order and, in each block, rows in order (the contact models put normal rows first, then
+//! friction, then the face model's torques, as the paper's Springhead does):
 //!
-//! `Δλ = ω m (target − J v)`, `λ += Δλ`, `v += M⁻¹Jᵀ Δλ`,
+//! `Δλ = ω (target − J v) / k`, `λ += Δλ`, `v += M⁻¹Jᵀ Δλ`,
 //!
 //! then the block's projection maps the block's `λ` back onto its admissible set and whatever it
-//! moved is pushed into the velocities too (see [`crate::Projection`] for why after every row). Each update is O(1), a sweep O(rows). A fixed number of sweeps is run (15,
-//! the paper's), not a tolerance: real-time budgets are fixed.
+//! moved is pushed into the velocities too (see [`crate::Projection`] for why after every row).
+//! A sweep is O(rows) plus the projections. A fixed number of sweeps is run (15, the paper's),
+//! not a tolerance: real-time budgets are fixed.
+//!
+//! **Friction pairs.** The two tangent rows of an isotropic friction disc
+//! ([`Projection::tangent_pair`]) are updated together. With `e = J₂ v − target` their 2-vector
+//! of velocity errors and `K = J₂ M⁻¹ J₂ᵀ` their 2×2 block of `A`, the step is the exact line
+//! search along `−e` (rapier's `ContactConstraintTangentPart`):
+//!
+//! `Δλ = −ω (eᵀe / eᵀKe) e`, then the projection scales `λ` back onto the disc.
+//!
+//! While sticking, the step converges to `e = 0` like any Gauss–Seidel step. While sliding, a
+//! fixed point on the disc's rim needs `λ − s e ∥ λ` with `s > 0`, so `λ ∥ −e`: the friction
+//! impulse is antiparallel to the slip velocity it leaves, whatever the tangents' orientation —
+//! Coulomb's maximal dissipation. The Newton step `Δλ = −K⁻¹e` was rejected: its fixed point is
+//! `λ ∥ −K⁻¹e`, off the slip direction wherever `K` is not isotropic (a cube's corner).
 //!
 //! Decision record: the projection sees the whole block, not one row, because the face model's
 //! centre of pressure couples three rows (τ₁, τ₂, f₃) and cannot be clamped one row at a time.
@@ -91,15 +105,19 @@ struct RowResponse {
     angular_a: Vector3<f64>,
     linear_b: Vector3<f64>,
     angular_b: Vector3<f64>,
-    /// `1/(J M⁻¹ Jᵀ)`; 0 for a row no impulse can move (both bodies fixed).
+    /// `k = J M⁻¹ Jᵀ`, the row's own entry of `A`.
+    inverse_mass: f64,
+    /// `1/k`; 0 for a row no impulse can move (both bodies fixed).
     effective_mass: f64,
+    /// `J_next M⁻¹ Jᵀ`, the entry of `A` coupling the first row of a friction pair to the
+    /// second; 0 for other rows.
+    coupling: f64,
 }
 
 /// Buffers reused across solves so sweeps allocate nothing.
 #[derive(Debug, Clone, Default)]
 pub struct PgsWorkspace {
     responses: Vec<RowResponse>,
-    block_velocity: Vec<f64>,
     block_impulse: Vec<f64>,
     /// The block's impulses as already pushed into the velocities.
     block_applied: Vec<f64>,
@@ -136,7 +154,11 @@ pub fn solve_in_place<P: Projection>(
 }
 
 /// Computes `M⁻¹Jᵀ` and effective masses, and applies or clears the starting impulses.
-fn prepare<P>(problem: &mut Problem<P>, workspace: &mut PgsWorkspace, warm_start: WarmStart) {
+fn prepare<P: Projection>(
+    problem: &mut Problem<P>,
+    workspace: &mut PgsWorkspace,
+    warm_start: WarmStart,
+) {
     let Problem {
         bodies,
         rows,
@@ -147,14 +169,19 @@ fn prepare<P>(problem: &mut Problem<P>, workspace: &mut PgsWorkspace, warm_start
         .responses
         .resize(rows.len(), RowResponse::default());
     let widest = blocks.iter().map(|b| b.rows.len()).max().unwrap_or(0);
-    workspace.block_velocity.resize(widest, 0.0);
     workspace.block_impulse.resize(widest, 0.0);
     workspace.block_applied.resize(widest, 0.0);
     for block in blocks.iter() {
         let (a, b) = (bodies[block.body_a.0], bodies[block.body_b.0]);
+        responses_of(
+            block,
+            rows,
+            &a,
+            &b,
+            &mut workspace.responses[block.rows.clone()],
+        );
         for r in block.rows.clone() {
-            let response = response(&rows[r].jacobian, &a, &b);
-            workspace.responses[r] = response;
+            let response = workspace.responses[r];
             match warm_start {
                 WarmStart::On => {
                     let impulse = rows[r].impulse;
@@ -181,8 +208,9 @@ fn sweep<P: Projection>(
     Ok(largest_change)
 }
 
-/// Updates the rows of block `index` once each, with the responses in `workspace.responses`
-/// at `responses` (the block's own, or the shock pass's); returns `max |Δλ|`.
+/// Updates the rows of block `index` once each (a friction pair as one 2-D step), with the
+/// responses in `workspace.responses` at `responses` (the block's own, or the shock pass's);
+/// returns `max |Δλ|`.
 fn update_block<P: Projection>(
     problem: &mut Problem<P>,
     workspace: &mut PgsWorkspace,
@@ -199,18 +227,36 @@ fn update_block<P: Projection>(
     let (ia, ib) = (block.body_a.0, block.body_b.0);
     let rows = &mut rows[block.rows.clone()];
     let responses = &workspace.responses[responses];
-    let velocity = &mut workspace.block_velocity[..rows.len()];
     let impulse = &mut workspace.block_impulse[..rows.len()];
     let applied = &mut workspace.block_applied[..rows.len()];
     for (k, row) in rows.iter().enumerate() {
         impulse[k] = row.impulse;
         applied[k] = row.impulse;
     }
-    for k in 0..rows.len() {
-        let w = rows[k].jacobian.velocity(&bodies[ia], &bodies[ib]);
-        velocity[k] = w;
-        impulse[k] += relaxation * responses[k].effective_mass * (rows[k].target - w);
-        block.projection.project(impulse, velocity, k);
+    let pair = block
+        .projection
+        .tangent_pair()
+        .filter(|&first| first + 1 < rows.len());
+    let mut k = 0;
+    while k < rows.len() {
+        let error = |r: usize| rows[r].jacobian.velocity(&bodies[ia], &bodies[ib]) - rows[r].target;
+        let width = if pair == Some(k) {
+            // Exact line search along −e on the quadratic ½ λᵀKλ + eᵀλ (module doc).
+            let (e1, e2) = (error(k), error(k + 1));
+            let (r1, r2) = (&responses[k], &responses[k + 1]);
+            let curvature =
+                r1.inverse_mass * e1 * e1 + 2.0 * r1.coupling * e1 * e2 + r2.inverse_mass * e2 * e2;
+            if curvature > 0.0 {
+                let step = relaxation * (e1 * e1 + e2 * e2) / curvature;
+                impulse[k] -= step * e1;
+                impulse[k + 1] -= step * e2;
+            }
+            2
+        } else {
+            impulse[k] -= relaxation * responses[k].effective_mass * error(k);
+            1
+        };
+        block.projection.project(impulse, k);
         for j in 0..rows.len() {
             let delta = impulse[j] - applied[j];
             if delta != 0.0 {
@@ -221,6 +267,7 @@ fn update_block<P: Projection>(
                 applied[j] = impulse[j];
             }
         }
+        k += width;
     }
     let mut largest_change: f64 = 0.0;
     for (row, &new) in rows.iter_mut().zip(impulse.iter()) {
@@ -260,11 +307,7 @@ pub fn shock_propagation<P: Projection>(
         .map(|b| b.rows.len())
         .max()
         .unwrap_or(0);
-    for buffer in [
-        &mut workspace.block_velocity,
-        &mut workspace.block_impulse,
-        &mut workspace.block_applied,
-    ] {
+    for buffer in [&mut workspace.block_impulse, &mut workspace.block_applied] {
         buffer.resize(widest, 0.0);
     }
     for &(index, support) in order {
@@ -284,33 +327,62 @@ pub fn shock_propagation<P: Projection>(
         held.inv_inertia_world = nalgebra::Matrix3::zeros();
         // The block's responses with the supporting body immovable, after the solve's own.
         let start = problem.rows.len();
-        workspace.responses.resize(start, RowResponse::default());
-        for r in block.rows.clone() {
-            workspace
-                .responses
-                .push(response(&problem.rows[r].jacobian, &a, &b));
-        }
-        let end = workspace.responses.len();
+        let end = start + block.rows.len();
+        workspace.responses.resize(end, RowResponse::default());
+        responses_of(
+            block,
+            &problem.rows,
+            &a,
+            &b,
+            &mut workspace.responses[start..end],
+        );
         update_block(problem, workspace, index, start..end, 1.0)?;
     }
     Ok(())
 }
 
+/// Writes the responses of `block`'s rows between bodies `a` and `b` into `out` (one per row),
+/// with the coupling of its friction pair, if any.
+fn responses_of<P: Projection>(
+    block: &crate::Block<P>,
+    rows: &[crate::Row],
+    a: &SolverBody,
+    b: &SolverBody,
+    out: &mut [RowResponse],
+) {
+    let rows = &rows[block.rows.clone()];
+    for (row, response) in rows.iter().zip(out.iter_mut()) {
+        *response = response_of(&row.jacobian, a, b);
+    }
+    if let Some(first) = block.projection.tangent_pair()
+        && first + 1 < rows.len()
+    {
+        out[first].coupling = along(&rows[first + 1].jacobian, &out[first]);
+    }
+}
+
 /// How a unit impulse on a row with Jacobian `j` changes the velocities of `a` and `b`.
-fn response(j: &Jacobian, a: &SolverBody, b: &SolverBody) -> RowResponse {
+fn response_of(j: &Jacobian, a: &SolverBody, b: &SolverBody) -> RowResponse {
     let mut response = RowResponse {
         linear_a: j.linear_a * a.inv_mass,
         angular_a: a.inv_inertia_world * j.angular_a,
         linear_b: j.linear_b * b.inv_mass,
         angular_b: b.inv_inertia_world * j.angular_b,
-        effective_mass: 0.0,
+        ..RowResponse::default()
     };
-    let k = j.linear_a.dot(&response.linear_a)
-        + j.angular_a.dot(&response.angular_a)
-        + j.linear_b.dot(&response.linear_b)
-        + j.angular_b.dot(&response.angular_b);
+    let k = along(j, &response);
+    response.inverse_mass = k.max(0.0);
     response.effective_mass = if k > 0.0 { 1.0 / k } else { 0.0 };
     response
+}
+
+/// `J M⁻¹Jᵣᵀ`: how fast a row with Jacobian `j` moves per unit impulse of the row whose response
+/// is `response`.
+fn along(j: &Jacobian, response: &RowResponse) -> f64 {
+    j.linear_a.dot(&response.linear_a)
+        + j.angular_a.dot(&response.angular_a)
+        + j.linear_b.dot(&response.linear_b)
+        + j.angular_b.dot(&response.angular_b)
 }
 
 /// `v += M⁻¹Jᵀ λ` for both bodies of a row.

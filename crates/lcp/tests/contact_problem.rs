@@ -195,7 +195,7 @@ fn recorded_impulse_change_shrinks_and_warm_start_reuses_impulses() {
 struct PoisonProjection;
 
 impl Projection for PoisonProjection {
-    fn project(&mut self, impulses: &mut [f64], _: &[f64], _: usize) {
+    fn project(&mut self, impulses: &mut [f64], _: usize) {
         impulses[0] = f64::NAN;
     }
     fn bound(&self, _: usize) -> Option<RowBound> {

@@ -3,6 +3,7 @@
 use nalgebra::{Matrix3, Point3, UnitQuaternion, Vector3};
 use tatami_lcp::SolverBody;
 
+use crate::rotation::free_rotation;
 use crate::{Shape, WorldError};
 
 /// Density used when a dynamic body gives neither mass nor density: water, 1000 kg/m³.
@@ -318,6 +319,26 @@ impl Body {
         let w = self.angular_velocity;
         0.5 * self.mass * self.linear_velocity.norm_squared()
             + 0.5 * w.dot(&(self.inertia_world() * w))
+    }
+
+    /// Moves the body over `dt` with the solved velocities: the centre of mass along
+    /// `linear_velocity`, the orientation and angular velocity by the free-rotation step from
+    /// `angular_velocity` (see [`crate::rotation`]), which keeps the angular momentum.
+    pub(crate) fn advance(
+        &mut self,
+        linear_velocity: Vector3<f64>,
+        angular_velocity: Vector3<f64>,
+        dt: f64,
+    ) {
+        self.linear_velocity = linear_velocity;
+        self.centre += linear_velocity * dt;
+        (self.rotation, self.angular_velocity) = free_rotation(
+            &self.rotation,
+            &angular_velocity,
+            &self.inertia_local,
+            &self.inv_inertia_local,
+            dt,
+        );
     }
 
     /// The body as the solver sees it (fixed bodies have zero inverse mass and inertia).

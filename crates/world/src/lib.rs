@@ -2,8 +2,9 @@
 //! sphere, cylinder and convex-hull shapes, collision with parry3d whose support polygons keep every vertex of the face-face
 //! overlap, semi-implicit Euler stepping, and scene files.
 //!
-//! A step is `collision → contact rows → solver → integrate` (see [`World::step`]); each stage is
-//! timed ([`World::timings`]) so experiments can time the solver call alone.
+//! A step is `collision → contact rows → solver → integrate` (see [`World::step`]); the
+//! integrator turns each body by a free-rotation step that conserves its angular momentum, so
+//! tumbling bodies precess and flip as Euler's equations say. Each stage is timed ([`World::timings`]) so experiments can time the solver call alone.
 
 mod body;
 mod broad_phase;
@@ -11,6 +12,7 @@ mod builder;
 mod collision;
 mod error;
 mod parry_bridge;
+mod rotation;
 pub mod scene;
 mod settings;
 mod shape;

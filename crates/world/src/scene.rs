@@ -2,8 +2,9 @@
 //! compatibly).
 //!
 //! Beyond DESIGN §6's fields a scene may set `steps`, `solver` (`"pgs"` or `"direct"`),
-//! `warm_start` and `shock_propagation` (booleans, off by default), `friction_cone` (`"box"` or
-//! `"circle"`), `bias_rate` and `slop`.
+//! `warm_start` and `shock_propagation` (booleans, off by default), `friction_cone` (`"circle"`,
+//! the isotropic default, or `"box"`, the paper's pyramid), `bias_rate`, `slop` and
+//! `max_depenetration_speed` (m/s, > 0).
 //!
 //! Every number is checked while it is read, so an invalid scene is rejected with the field's
 //! path and the line it is on — unknown fields, unknown shapes, non-finite numbers, sizes, masses
@@ -243,6 +244,7 @@ struct RawScene {
     friction_cone: Option<ConeName>,
     bias_rate: Option<NonNegative>,
     slop: Option<NonNegative>,
+    max_depenetration_speed: Option<Positive>,
     bodies: Vec<RawBody>,
 }
 
@@ -284,6 +286,9 @@ impl RawScene {
         }
         if let Some(slop) = self.slop {
             settings.contact.slop = slop.0;
+        }
+        if let Some(speed) = self.max_depenetration_speed {
+            settings.contact.max_depenetration_speed = speed.0;
         }
         settings.shock_propagation = self.shock_propagation == Some(true);
         Scene {

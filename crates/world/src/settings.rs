@@ -1,6 +1,6 @@
 //! World settings: contact model, solver, contact tuning, collision tolerances.
 
-use tatami_contact::{ContactModel, ContactSettings};
+use tatami_contact::{ContactModel, ContactSettings, FrictionCone};
 use tatami_lcp::direct::DirectParams;
 use tatami_lcp::pgs::PgsParams;
 
@@ -11,7 +11,9 @@ use crate::WorldError;
 pub enum Solver {
     /// Projected Gauss–Seidel (sequential impulses), the default.
     Pgs(PgsParams),
-    /// The pivoting direct solver (dense, exact; for reference and comparison).
+    /// The pivoting direct solver (dense, exact; for reference and comparison). Its problem
+    /// must be linear, so it takes friction as the pyramid ([`FrictionCone::Box`]) whatever
+    /// [`ContactSettings::friction_cone`] says (see [`WorldSettings::contact_for_solver`]).
     Direct(DirectParams),
 }
 
@@ -56,6 +58,18 @@ impl Default for WorldSettings {
 }
 
 impl WorldSettings {
+    /// The contact settings the rows are built with: [`WorldSettings::contact`], with the
+    /// friction pyramid for the direct solver, whose problem must be linear.
+    pub fn contact_for_solver(&self) -> ContactSettings {
+        match self.solver {
+            Solver::Pgs(_) => self.contact,
+            Solver::Direct(_) => ContactSettings {
+                friction_cone: FrictionCone::Box,
+                ..self.contact
+            },
+        }
+    }
+
     /// Checks every number is finite and in range.
     pub fn validate(&self) -> Result<(), WorldError> {
         let check = |field: &'static str, value: f64, ok: bool, range: &str| {
@@ -76,6 +90,12 @@ impl WorldSettings {
             "in [0, 1]",
         )?;
         check("slop", c.slop, c.slop >= 0.0, "≥ 0")?;
+        check(
+            "max_depenetration_speed",
+            c.max_depenetration_speed,
+            c.max_depenetration_speed > 0.0,
+            "> 0",
+        )?;
         check(
             "restitution_threshold",
             c.restitution_threshold,

@@ -3,7 +3,7 @@
 use std::ops::Range;
 use std::time::Instant;
 
-use nalgebra::{Point3, Quaternion, UnitQuaternion, Vector3};
+use nalgebra::{Point3, Vector3};
 use tatami_contact::{Contact, ContactProjection};
 use tatami_lcp::pgs::{self, PgsWorkspace, Support, WarmStart};
 use tatami_lcp::{LcpError, Problem, direct};
@@ -255,11 +255,12 @@ impl World {
         problem.rows.clear();
         problem.blocks.clear();
         self.contact_blocks.clear();
+        let contact_settings = self.settings.contact_for_solver();
         for contact in &self.contacts {
             let first = problem.blocks.len();
             self.settings
                 .model
-                .build(contact, dt, &self.settings.contact, problem)
+                .build(contact, dt, &contact_settings, problem)
                 .map_err(|source| StepError::Contact {
                     pair: pair_name(&self.bodies, contact),
                     source,
@@ -347,7 +348,8 @@ impl World {
         }
     }
 
-    /// Semi-implicit Euler: the solved velocities move the bodies; quaternions renormalised.
+    /// Semi-implicit Euler: the solved velocities move the bodies; each turns by the
+    /// free-rotation step that keeps its angular momentum (the gyroscopic term).
     fn integrate(&mut self, dt: f64) -> Result<(), StepError> {
         for (body, solved) in self.bodies.iter().zip(&self.problem.bodies) {
             if !body.is_fixed() && !solved.is_finite() {
@@ -357,15 +359,9 @@ impl World {
             }
         }
         for (body, solved) in self.bodies.iter_mut().zip(&self.problem.bodies) {
-            if body.is_fixed() {
-                continue;
+            if !body.is_fixed() {
+                body.advance(solved.linear_velocity, solved.angular_velocity, dt);
             }
-            body.linear_velocity = solved.linear_velocity;
-            body.angular_velocity = solved.angular_velocity;
-            body.centre += body.linear_velocity * dt;
-            let q = body.rotation.into_inner();
-            let spin = Quaternion::from_imag(body.angular_velocity) * q * (0.5 * dt);
-            body.rotation = UnitQuaternion::new_normalize(q + spin);
         }
         Ok(())
     }
