@@ -119,8 +119,10 @@ fn the_converged_answer_does_not_depend_on_the_tangents() {
 #[test]
 fn the_box_pyramid_turns_a_diagonal_slide_towards_an_axis() {
     // The option the paper uses: each tangent bounded apart gives √2 μ f3 at 45° to the axes.
-    let mut settings = ContactSettings::default();
-    settings.friction_cone = FrictionCone::Box;
+    let settings = ContactSettings {
+        friction_cone: FrictionCone::Box,
+        ..ContactSettings::default()
+    };
     let frame = frame(0.0);
     let square =
         [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(x, y)| Point2::new(x, y));
