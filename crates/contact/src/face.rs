@@ -113,12 +113,14 @@ impl Projection for FaceProjection {
     }
 }
 
-/// Appends one 6-row block at the support polygon's centroid. The contact must be validated.
+/// Appends one 6-row block at the support polygon's centroid and each row's penetration bias
+/// to `biases`. The contact must be validated.
 pub(crate) fn build(
     contact: &Contact,
     dt: f64,
     settings: &ContactSettings,
     problem: &mut Problem<ContactProjection>,
+    biases: &mut Vec<f64>,
 ) {
     let frame = &contact.frame;
     let centre = contact.support.centroid();
@@ -140,7 +142,7 @@ pub(crate) fn build(
     );
     let start = problem.rows.len();
     let rows = [
-        (point_jacobian(contact, &p, &frame.normal), target),
+        (point_jacobian(contact, &p, &frame.normal), target.velocity),
         (point_jacobian(contact, &p, &frame.tangent1), 0.0),
         (point_jacobian(contact, &p, &frame.tangent2), 0.0),
         (angular_jacobian(&frame.tangent1), 0.0),
@@ -154,6 +156,7 @@ pub(crate) fn build(
             target,
             impulse: 0.0,
         }));
+    biases.extend([target.bias, 0.0, 0.0, 0.0, 0.0, 0.0]);
     problem.blocks.push(Block {
         body_a: contact.body_a,
         body_b: contact.body_b,

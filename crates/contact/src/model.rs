@@ -39,7 +39,8 @@ impl ContactModel {
         Self::ALL.into_iter().find(|m| m.name() == name)
     }
 
-    /// Appends the contact's rows and blocks to `problem`.
+    /// Appends the contact's rows and blocks to `problem`, each normal row's target including
+    /// its penetration bias (Baumgarte stabilisation), so the problem is complete for one solve.
     ///
     /// The bodies' velocities in `problem` are read as those at the start of the step (before
     /// external forces): they decide static or kinetic friction and restitution.
@@ -50,14 +51,35 @@ impl ContactModel {
         settings: &ContactSettings,
         problem: &mut Problem<ContactProjection>,
     ) -> Result<(), ContactError> {
+        let first = problem.rows.len();
+        let mut biases = Vec::new();
+        self.build_split(contact, dt, settings, problem, &mut biases)?;
+        for (row, bias) in problem.rows[first..].iter_mut().zip(biases) {
+            row.target += bias;
+        }
+        Ok(())
+    }
+
+    /// As [`ContactModel::build`], but the penetration bias stays out of the targets: one value
+    /// per appended row is appended to `biases` (0 but on normal rows), for a solver that
+    /// removes penetration in a pass of its own (split impulses), so the push never becomes
+    /// velocity.
+    pub fn build_split(
+        self,
+        contact: &Contact,
+        dt: f64,
+        settings: &ContactSettings,
+        problem: &mut Problem<ContactProjection>,
+        biases: &mut Vec<f64>,
+    ) -> Result<(), ContactError> {
         if !(dt.is_finite() && dt > 0.0) {
             return Err(ContactError::InvalidTimeStep(dt));
         }
         contact.validate(problem.bodies.len())?;
         match self {
-            Self::Vertex => vertex::build(contact, dt, settings, problem),
-            Self::Patch => patch::build(contact, dt, settings, problem),
-            Self::Face => face::build(contact, dt, settings, problem),
+            Self::Vertex => vertex::build(contact, dt, settings, problem, biases),
+            Self::Patch => patch::build(contact, dt, settings, problem, biases),
+            Self::Face => face::build(contact, dt, settings, problem, biases),
         }
         Ok(())
     }

@@ -50,12 +50,14 @@ impl Projection for PatchProjection {
     }
 }
 
-/// Appends the patch block. The contact must be validated.
+/// Appends the patch block and each row's penetration bias to `biases`. The contact must be
+/// validated.
 pub(crate) fn build(
     contact: &Contact,
     dt: f64,
     settings: &ContactSettings,
     problem: &mut Problem<ContactProjection>,
+    biases: &mut Vec<f64>,
 ) {
     let frame = &contact.frame;
     let vertices = contact.support.vertices();
@@ -64,18 +66,21 @@ pub(crate) fn build(
     for (vertex, &depth) in vertices.iter().zip(&contact.depths) {
         let p = frame.to_world(vertex);
         let (normal_speed, _) = point_motion(contact, &problem.bodies, &p);
+        let target = normal_target(
+            depth,
+            normal_speed,
+            contact.material.restitution,
+            dt,
+            settings,
+        );
         problem.rows.push(Row {
             jacobian: point_jacobian(contact, &p, &frame.normal),
-            target: normal_target(
-                depth,
-                normal_speed,
-                contact.material.restitution,
-                dt,
-                settings,
-            ),
+            target: target.velocity,
             impulse: 0.0,
         });
+        biases.push(target.bias);
     }
+    biases.extend([0.0; 3]);
     let c = frame.to_world(&centre);
     let (_, slip) = point_motion(contact, &problem.bodies, &c);
     let distances: Vec<f64> = vertices.iter().map(|v| (v - centre).norm()).collect();

@@ -59,19 +59,18 @@ pub enum TwistRadius {
     },
 }
 
-/// Fraction of the depth beyond the slop that the normal row's target removes per step. Default
-/// 0.1 (Springhead's).
+/// Fraction of the depth beyond the slop that the normal row's penetration bias removes per
+/// step. Default 0.1 (Springhead's).
 pub const DEFAULT_BIAS_RATE: f64 = 0.1;
 
 /// Penetration left uncorrected (m). Default 2 mm (Springhead's), so resting contacts stay
 /// touching.
 pub const DEFAULT_SLOP: f64 = 0.002;
 
-/// Fastest separation (m/s) the penetration bias may ask for. Default 1 m/s, within the
-/// 1–3 m/s of Box2D's contact push speed: bodies created overlapping separate over a few steps
-/// instead of being thrown apart at `bias_rate · depth / dt` (0.1 · 0.5 m / 0.01 s = 5 m/s for two
-/// coincident unit cubes), and a resting contact, whose depth stays near the slop, never reaches
-/// it. Restitution is not capped.
+/// Fastest separation (m/s) the penetration bias may ask for at one contact. Default 1 m/s,
+/// within the 1–3 m/s of Box2D's contact push speed: bodies created overlapping separate over a
+/// few steps instead of being pushed at `bias_rate · depth / dt` (0.1 · 0.5 m / 0.01 s = 5 m/s for
+/// two coincident unit cubes). Restitution is not capped.
 pub const DEFAULT_MAX_DEPENETRATION_SPEED: f64 = 1.0;
 
 /// How contact rows turn depth, approach speed and slip into targets and bounds.

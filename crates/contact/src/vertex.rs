@@ -11,12 +11,14 @@ use crate::{Contact, ContactProjection, ContactSettings, PointFriction};
 /// Rows per support vertex.
 pub const ROWS_PER_VERTEX: usize = 3;
 
-/// Appends one block per support vertex. The contact must be validated.
+/// Appends one block per support vertex and each row's penetration bias to `biases`. The
+/// contact must be validated.
 pub(crate) fn build(
     contact: &Contact,
     dt: f64,
     settings: &ContactSettings,
     problem: &mut Problem<ContactProjection>,
+    biases: &mut Vec<f64>,
 ) {
     let frame = &contact.frame;
     for (vertex, &depth) in contact.support.vertices().iter().zip(&contact.depths) {
@@ -31,7 +33,7 @@ pub(crate) fn build(
             settings,
         );
         for (direction, target) in [
-            (frame.normal, target),
+            (frame.normal, target.velocity),
             (frame.tangent1, 0.0),
             (frame.tangent2, 0.0),
         ] {
@@ -41,6 +43,7 @@ pub(crate) fn build(
                 impulse: 0.0,
             });
         }
+        biases.extend([target.bias, 0.0, 0.0]);
         problem.blocks.push(Block {
             body_a: contact.body_a,
             body_b: contact.body_b,

@@ -321,24 +321,31 @@ impl Body {
             + 0.5 * w.dot(&(self.inertia_world() * w))
     }
 
-    /// Moves the body over `dt` with the solved velocities: the centre of mass along
-    /// `linear_velocity`, the orientation and angular velocity by the free-rotation step from
-    /// `angular_velocity` (see [`crate::rotation`]), which keeps the angular momentum.
+    /// Moves the body over `dt` with the solved velocities: the centre of mass along the linear
+    /// velocity, the orientation and angular velocity by the free-rotation step (see
+    /// [`crate::rotation`]), which keeps the angular momentum. A position `correction`'s
+    /// pseudo-velocities move the centre and turn the body on top, leaving its velocities alone.
     pub(crate) fn advance(
         &mut self,
-        linear_velocity: Vector3<f64>,
-        angular_velocity: Vector3<f64>,
+        solved: &SolverBody,
+        correction: Option<&SolverBody>,
         dt: f64,
     ) {
-        self.linear_velocity = linear_velocity;
-        self.centre += linear_velocity * dt;
+        self.linear_velocity = solved.linear_velocity;
+        self.centre += solved.linear_velocity * dt;
         (self.rotation, self.angular_velocity) = free_rotation(
             &self.rotation,
-            &angular_velocity,
+            &solved.angular_velocity,
             &self.inertia_local,
             &self.inv_inertia_local,
             dt,
         );
+        if let Some(pseudo) = correction {
+            self.centre += pseudo.linear_velocity * dt;
+            self.rotation =
+                UnitQuaternion::from_scaled_axis(pseudo.angular_velocity * dt) * self.rotation;
+            self.rotation.renormalize();
+        }
     }
 
     /// The body as the solver sees it (fixed bodies have zero inverse mass and inertia).

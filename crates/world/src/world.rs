@@ -5,8 +5,8 @@ use std::time::Instant;
 
 use nalgebra::{Point3, Vector3};
 use tatami_contact::{Contact, ContactProjection};
-use tatami_lcp::pgs::{self, PgsWorkspace, Support, WarmStart};
-use tatami_lcp::{LcpError, Problem, direct};
+use tatami_lcp::pgs::{self, PgsParams, PgsWorkspace, Record, Support, WarmStart};
+use tatami_lcp::{LcpError, Problem, SolverBody, direct};
 
 use crate::collision::{self, BodyGeometry, CollisionWorkspace};
 use crate::parry_bridge::Collider;
@@ -41,6 +41,12 @@ pub struct World {
     problem: Problem<ContactProjection>,
     /// Blocks of `problem` belonging to each contact.
     contact_blocks: Vec<Range<usize>>,
+    /// Penetration bias of each row of `problem`, kept out of its targets (split impulses).
+    biases: Vec<f64>,
+    /// The position-correction problem of the last step: `problem`'s blocks with the biases as
+    /// targets, solved from rest; its bodies' velocities move positions only. Empty on steps
+    /// where no contact is deeper than the slop.
+    correction: Problem<ContactProjection>,
     collision_workspace: CollisionWorkspace,
     pgs_workspace: PgsWorkspace,
     warm_start: WarmStartCache,
@@ -68,6 +74,8 @@ impl World {
             contacts: Vec::new(),
             problem: Problem::default(),
             contact_blocks: Vec::new(),
+            biases: Vec::new(),
+            correction: Problem::default(),
             collision_workspace: CollisionWorkspace::default(),
             pgs_workspace: PgsWorkspace::default(),
             warm_start: WarmStartCache::default(),
@@ -147,7 +155,8 @@ impl World {
     }
 
     /// The last step's constraint problem, with the solved impulses in its rows (or, after
-    /// [`World::prepare_step`], the unsolved problem it built).
+    /// [`World::prepare_step`], the unsolved problem it built). Its targets are the velocity
+    /// targets: penetration is removed by a separate position pass (see [`World::step`]).
     pub fn problem(&self) -> &Problem<ContactProjection> {
         &self.problem
     }
@@ -183,7 +192,15 @@ impl World {
             .sum()
     }
 
-    /// Advances the world by `dt` seconds.
+    /// Advances the world by `dt` seconds, in stages: collision → contact rows → velocity
+    /// solve → position correction → integrate.
+    ///
+    /// Penetration is removed by split impulses (Catto 2006; Bullet's `splitImpulse`, rapier's
+    /// biased and unbiased right-hand sides): the velocity solve sees no penetration bias, and
+    /// on steps where a contact is deeper than the slop, a second solve of the same blocks from
+    /// rest, with the biases as targets, gives pseudo-velocities that move the positions only.
+    /// Overlapping bodies thus separate without gaining speed or energy — with the bias in the
+    /// velocities, pushes add up along chains of overlapping bodies and throw them.
     pub fn step(&mut self, dt: f64) -> Result<(), StepError> {
         check_time_step(dt)?;
         let start = Instant::now();
@@ -193,13 +210,16 @@ impl World {
         let built = Instant::now();
         self.solve()?;
         let solved = Instant::now();
+        self.correct_penetration()?;
+        let corrected = Instant::now();
         self.integrate(dt)?;
         let integrated = Instant::now();
         self.timings = StepTimings {
             collision: collided - start,
             setup: built - collided,
             solve: solved - built,
-            integrate: integrated - solved,
+            correction: corrected - solved,
+            integrate: integrated - corrected,
         };
         let y = dt - self.time_compensation;
         let t = self.time + y;
@@ -255,12 +275,13 @@ impl World {
         problem.rows.clear();
         problem.blocks.clear();
         self.contact_blocks.clear();
+        self.biases.clear();
         let contact_settings = self.settings.contact_for_solver();
         for contact in &self.contacts {
             let first = problem.blocks.len();
             self.settings
                 .model
-                .build(contact, dt, &contact_settings, problem)
+                .build_split(contact, dt, &contact_settings, problem, &mut self.biases)
                 .map_err(|source| StepError::Contact {
                     pair: pair_name(&self.bodies, contact),
                     source,
@@ -317,6 +338,60 @@ impl World {
         })
     }
 
+    /// The position pass of split impulses: when a contact is deeper than the slop, solves the
+    /// velocity problem's blocks again from rest with the penetration biases as targets, with
+    /// the same solver; the solution's velocities move positions only (see [`World::step`]).
+    fn correct_penetration(&mut self) -> Result<(), StepError> {
+        let correction = &mut self.correction;
+        if self.biases.iter().all(|&bias| bias == 0.0) {
+            correction.bodies.clear();
+            return Ok(());
+        }
+        correction.bodies.clone_from(&self.problem.bodies);
+        for body in &mut correction.bodies {
+            body.linear_velocity = Vector3::zeros();
+            body.angular_velocity = Vector3::zeros();
+        }
+        correction.rows.clone_from(&self.problem.rows);
+        for (row, &bias) in correction.rows.iter_mut().zip(&self.biases) {
+            row.target = bias;
+            row.impulse = 0.0;
+        }
+        correction.blocks.clone_from(&self.problem.blocks);
+        let result = match &self.settings.solver {
+            Solver::Pgs(params) => {
+                let from_rest = PgsParams {
+                    warm_start: WarmStart::Off,
+                    record: Record::Nothing,
+                    ..*params
+                };
+                pgs::solve_in_place(correction, &mut self.pgs_workspace, &from_rest).map(drop)
+            }
+            Solver::Direct(params) => direct::solve(correction, params).map(drop),
+        };
+        if let Err(source) = result {
+            return Err(StepError::Solver {
+                pair: self.contact_of_error(&source),
+                source,
+            });
+        }
+        // Pushes add up along chains of overlapping bodies; no body is moved faster than one
+        // contact may push.
+        let limit = self.settings.contact.max_depenetration_speed;
+        for (body, solid) in self.correction.bodies.iter_mut().zip(&self.geometry) {
+            let reach = solid.outline.size();
+            let speed = body
+                .linear_velocity
+                .norm()
+                .max(body.angular_velocity.norm() * reach);
+            if speed > limit {
+                body.linear_velocity *= limit / speed;
+                body.angular_velocity *= limit / speed;
+            }
+        }
+        Ok(())
+    }
+
     /// The contact a solver error names through its block, if any.
     fn contact_of_error(&self, error: &LcpError) -> Option<String> {
         let block = match error {
@@ -350,17 +425,22 @@ impl World {
 
     /// Semi-implicit Euler: the solved velocities move the bodies; each turns by the
     /// free-rotation step that keeps its angular momentum (the gyroscopic term).
+    /// The position correction's pseudo-velocities, when the step has one, move the positions
+    /// too.
     fn integrate(&mut self, dt: f64) -> Result<(), StepError> {
-        for (body, solved) in self.bodies.iter().zip(&self.problem.bodies) {
-            if !body.is_fixed() && !solved.is_finite() {
+        let corrections = &self.correction.bodies;
+        for (index, (body, solved)) in self.bodies.iter().zip(&self.problem.bodies).enumerate() {
+            let corrected = corrections.get(index).is_none_or(SolverBody::is_finite);
+            if !body.is_fixed() && !(solved.is_finite() && corrected) {
                 return Err(StepError::NonFiniteState {
                     body: body.name().to_owned(),
                 });
             }
         }
-        for (body, solved) in self.bodies.iter_mut().zip(&self.problem.bodies) {
+        for (index, (body, solved)) in self.bodies.iter_mut().zip(&self.problem.bodies).enumerate()
+        {
             if !body.is_fixed() {
-                body.advance(solved.linear_velocity, solved.angular_velocity, dt);
+                body.advance(solved, corrections.get(index), dt);
             }
         }
         Ok(())
