@@ -68,6 +68,6 @@ pub use model::ContactModel;
 pub use point_friction::PointFriction;
 pub use projection::ContactProjection;
 pub use settings::{
-    ContactSettings, DEFAULT_BIAS_RATE, DEFAULT_MAX_DEPENETRATION_SPEED, DEFAULT_SLOP,
-    FrictionCone, TwistRadius,
+    ContactSettings, DEFAULT_BIAS_RATE, DEFAULT_MAX_DEPENETRATION_SPEED, DEFAULT_MAX_VELOCITY_BIAS,
+    DEFAULT_SLOP, FrictionCone, TwistRadius,
 };

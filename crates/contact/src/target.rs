@@ -11,9 +11,10 @@ use crate::ContactSettings;
 /// What a normal row asks for.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct NormalTarget {
-    /// Target separation speed of the velocity solve (m/s).
+    /// Target separation speed of the velocity solve (m/s), including the penetration bias up
+    /// to `max_velocity_bias`.
     pub velocity: f64,
-    /// Separation speed asked for to remove the overlap beyond the slop (m/s, ≥ 0).
+    /// The rest of the penetration bias, for a position pass (m/s, ≥ 0).
     pub bias: f64,
 }
 
@@ -22,8 +23,9 @@ pub(crate) struct NormalTarget {
 ///
 /// - a gap: the row may close it in this step but not more (`velocity = depth / dt`, negative);
 /// - closing faster than the restitution threshold: bounce at `−e · normal_speed`;
-/// - overlap beyond the slop: `bias = bias_rate · (depth − slop) / dt`, at most
-///   `max_depenetration_speed`.
+/// - overlap beyond the slop: a push of `bias_rate · (depth − slop) / dt`, at most
+///   `max_depenetration_speed`; up to `max_velocity_bias` of it goes into the velocity target
+///   (Baumgarte: it holds resting stacks against the solver's residual), the rest into `bias`.
 pub(crate) fn normal_target(
     depth: f64,
     normal_speed: f64,
@@ -31,18 +33,22 @@ pub(crate) fn normal_target(
     dt: f64,
     settings: &ContactSettings,
 ) -> NormalTarget {
-    let gap = if depth < 0.0 { depth / dt } else { 0.0 };
-    let velocity = if restitution > 0.0 && normal_speed < -settings.restitution_threshold {
-        gap.max(-restitution * normal_speed)
-    } else {
-        gap
-    };
-    let bias = if depth > settings.slop {
+    let push = if depth > settings.slop {
         (settings.bias_rate * (depth - settings.slop) / dt).min(settings.max_depenetration_speed)
     } else {
         0.0
     };
-    NormalTarget { velocity, bias }
+    let held = push.min(settings.max_velocity_bias);
+    let gap_or_push = if depth < 0.0 { depth / dt } else { held };
+    let velocity = if restitution > 0.0 && normal_speed < -settings.restitution_threshold {
+        gap_or_push.max(-restitution * normal_speed)
+    } else {
+        gap_or_push
+    };
+    NormalTarget {
+        velocity,
+        bias: push - held,
+    }
 }
 
 #[cfg(test)]
@@ -50,21 +56,24 @@ mod tests {
     use super::*;
 
     #[test]
-    fn bias_starts_beyond_the_slop_and_scales_with_the_rate() {
+    fn a_shallow_overlap_is_pushed_out_by_the_velocity_target() {
         let s = ContactSettings::default();
-        assert_eq!(normal_target(0.001, 0.0, 0.0, 0.01, &s).bias, 0.0);
-        // 0.1 · (0.012 − 0.002) / 0.01 = 0.1 m/s, none of it in the velocity target.
-        let t = normal_target(0.012, 0.0, 0.0, 0.01, &s);
-        assert!((t.bias - 0.1).abs() < 1e-12);
-        assert_eq!(t.velocity, 0.0);
+        let none = normal_target(0.001, 0.0, 0.0, 0.01, &s);
+        assert_eq!((none.velocity, none.bias), (0.0, 0.0));
+        // 0.1 · (0.007 − 0.002) / 0.01 = 0.05 m/s, below the velocity solve's share.
+        let t = normal_target(0.007, 0.0, 0.0, 0.01, &s);
+        assert!((t.velocity - 0.05).abs() < 1e-12);
+        assert_eq!(t.bias, 0.0);
     }
 
     #[test]
-    fn a_deep_overlap_separates_no_faster_than_the_cap() {
+    fn a_deep_overlap_is_pushed_out_by_position_no_faster_than_the_cap() {
         let s = ContactSettings::default();
-        // 0.1 · (0.5 − 0.002) / 0.01 = 4.98 m/s uncapped.
+        // 0.1 · (0.5 − 0.002) / 0.01 = 4.98 m/s uncapped: the velocity solve takes its share,
+        // the position pass the rest of the capped push.
         let t = normal_target(0.5, 0.0, 0.0, 0.01, &s);
-        assert_eq!(t.bias, s.max_depenetration_speed);
+        assert_eq!(t.velocity, s.max_velocity_bias);
+        assert!((t.velocity + t.bias - s.max_depenetration_speed).abs() < 1e-12);
         // Restitution is not a depenetration and keeps its speed.
         let bounce = normal_target(0.5, -4.0, 1.0, 0.01, &s);
         assert!((bounce.velocity - 4.0).abs() < 1e-12);

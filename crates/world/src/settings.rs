@@ -97,6 +97,12 @@ impl WorldSettings {
             "> 0",
         )?;
         check(
+            "max_velocity_bias",
+            c.max_velocity_bias,
+            c.max_velocity_bias >= 0.0,
+            "≥ 0",
+        )?;
+        check(
             "restitution_threshold",
             c.restitution_threshold,
             c.restitution_threshold >= 0.0,

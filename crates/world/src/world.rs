@@ -430,8 +430,8 @@ impl World {
     fn integrate(&mut self, dt: f64) -> Result<(), StepError> {
         let corrections = &self.correction.bodies;
         for (index, (body, solved)) in self.bodies.iter().zip(&self.problem.bodies).enumerate() {
-            let finite = solved.is_finite()
-                && corrections.get(index).is_none_or(SolverBody::is_finite);
+            let finite =
+                solved.is_finite() && corrections.get(index).is_none_or(SolverBody::is_finite);
             if !(body.is_fixed() || finite) {
                 return Err(StepError::NonFiniteState {
                     body: body.name().to_owned(),

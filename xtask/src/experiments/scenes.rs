@@ -2,7 +2,7 @@
 //! a user runs with `cargo xtask simulate`.
 
 use tatami_world::scene::Scene;
-use tatami_world::{ContactModel, PgsParams, Solver, World};
+use tatami_world::{ContactModel, PgsParams, Solver, World, WorldSettings};
 
 /// A scene file of `scenes/`, by name and contents.
 pub struct SceneFile {
@@ -40,12 +40,24 @@ impl SceneFile {
     }
 }
 
-/// The world of `scene` under `model` with the paper's solver: 15 PGS sweeps from zero impulses.
+/// The world of `scene` under `model` with the paper's solver: 15 PGS sweeps from zero impulses
+/// and [`springhead_penetration`].
 pub fn paper_world(scene: &Scene, model: ContactModel) -> Result<World, String> {
     let mut scene = scene.clone();
     scene.settings.model = model;
     scene.settings.solver = Solver::Pgs(PgsParams::default());
+    scene.settings = springhead_penetration(scene.settings);
     scene.world().map_err(|e| e.to_string())
+}
+
+/// `settings` with the whole penetration push in the velocity solve (a Baumgarte bias, as
+/// Springhead and the paper do) instead of Tatami's default split, which leaves pushes beyond
+/// 0.2 m/s to a position pass. Without warm starting, the bias is what holds tall stacks
+/// against the solver's residual: with the paper's 15 sweeps the face model's tower stands to
+/// 50 cubes with it and to 20 with the default split.
+pub fn springhead_penetration(mut settings: WorldSettings) -> WorldSettings {
+    settings.contact.max_velocity_bias = settings.contact.max_depenetration_speed;
+    settings
 }
 
 /// Steps `world` by `dt`, naming the step in the error.

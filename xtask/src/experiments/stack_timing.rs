@@ -82,13 +82,20 @@ impl Config {
         }
     }
 
-    /// The tower scene's settings with this configuration's model and solver.
+    /// The tower scene's settings with this configuration's model and solver; the paper's
+    /// configurations (PGS from zero impulses, no shock pass) push penetration out as
+    /// Springhead does.
     fn settings(&self, scene: &Scene) -> WorldSettings {
-        WorldSettings {
+        let settings = WorldSettings {
             model: self.model,
             solver: self.solver(),
             shock_propagation: self.shock,
             ..scene.settings
+        };
+        if self.direct || self.warm_start || self.shock {
+            settings
+        } else {
+            scenes::springhead_penetration(settings)
         }
     }
 
