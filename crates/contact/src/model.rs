@@ -60,10 +60,10 @@ impl ContactModel {
         Ok(())
     }
 
-    /// As [`ContactModel::build`], but the penetration bias stays out of the targets: one value
-    /// per appended row is appended to `biases` (0 but on normal rows), for a solver that
-    /// removes penetration in a pass of its own (split impulses), so the push never becomes
-    /// velocity.
+    /// As [`ContactModel::build`], but the penetration push beyond
+    /// [`ContactSettings::max_velocity_bias`] stays out of the targets: one value per appended
+    /// row is appended to `biases` (0 but on normal rows), for a solver that removes it in a
+    /// position pass of its own (split impulses), so that part never becomes velocity.
     pub fn build_split(
         self,
         contact: &Contact,

@@ -1,10 +1,10 @@
 //! The normal row's targets: the velocity the solve drives it to (speculative gap, restitution)
 //! and the penetration bias, the separation speed that pushes an overlap out.
 //!
-//! The two are kept apart so that a solver can correct penetration in a pass of its own (split
-//! impulses): a bias inside the velocity target leaves its push in the bodies' velocities, and
-//! pushes add up along a chain of overlapping bodies — 500 cubes spawned overlapping reached
-//! 9 m/s with every contact's bias capped at 1 m/s.
+//! Beyond a small share the bias is kept apart so that a solver can correct penetration in a
+//! pass of its own (split impulses): a bias inside the velocity target leaves its push in the
+//! bodies' velocities, and pushes add up along a chain of overlapping bodies — 500 cubes
+//! spawned overlapping reached 13.7 m/s with every contact's bias capped at 1 m/s.
 
 use crate::ContactSettings;
 

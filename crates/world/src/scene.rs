@@ -3,8 +3,9 @@
 //!
 //! Beyond DESIGN §6's fields a scene may set `steps`, `solver` (`"pgs"` or `"direct"`),
 //! `warm_start` and `shock_propagation` (booleans, off by default), `friction_cone` (`"circle"`,
-//! the isotropic default, or `"box"`, the paper's pyramid), `bias_rate`, `slop` and
-//! `max_depenetration_speed` (m/s, > 0).
+//! the isotropic default, or `"box"`, the paper's pyramid), `bias_rate`, `slop`,
+//! `max_depenetration_speed` (m/s, > 0) and `max_velocity_bias` (m/s, ≥ 0; see
+//! [`tatami_contact::ContactSettings`]).
 //!
 //! Every number is checked while it is read, so an invalid scene is rejected with the field's
 //! path and the line it is on — unknown fields, unknown shapes, non-finite numbers, sizes, masses
@@ -245,6 +246,7 @@ struct RawScene {
     bias_rate: Option<NonNegative>,
     slop: Option<NonNegative>,
     max_depenetration_speed: Option<Positive>,
+    max_velocity_bias: Option<NonNegative>,
     bodies: Vec<RawBody>,
 }
 
@@ -289,6 +291,9 @@ impl RawScene {
         }
         if let Some(speed) = self.max_depenetration_speed {
             settings.contact.max_depenetration_speed = speed.0;
+        }
+        if let Some(speed) = self.max_velocity_bias {
+            settings.contact.max_velocity_bias = speed.0;
         }
         settings.shock_propagation = self.shock_propagation == Some(true);
         Scene {

@@ -41,11 +41,11 @@ pub struct World {
     problem: Problem<ContactProjection>,
     /// Blocks of `problem` belonging to each contact.
     contact_blocks: Vec<Range<usize>>,
-    /// Penetration bias of each row of `problem`, kept out of its targets (split impulses).
+    /// The part of each row's penetration push left to the position pass (split impulses).
     biases: Vec<f64>,
     /// The position-correction problem of the last step: `problem`'s blocks with the biases as
     /// targets, solved from rest; its bodies' velocities move positions only. Empty on steps
-    /// where no contact is deeper than the slop.
+    /// without biases.
     correction: Problem<ContactProjection>,
     collision_workspace: CollisionWorkspace,
     pgs_workspace: PgsWorkspace,
@@ -195,12 +195,14 @@ impl World {
     /// Advances the world by `dt` seconds, in stages: collision → contact rows → velocity
     /// solve → position correction → integrate.
     ///
-    /// Penetration is removed by split impulses (Catto 2006; Bullet's `splitImpulse`, rapier's
-    /// biased and unbiased right-hand sides): the velocity solve sees no penetration bias, and
-    /// on steps where a contact is deeper than the slop, a second solve of the same blocks from
-    /// rest, with the biases as targets, gives pseudo-velocities that move the positions only.
-    /// Overlapping bodies thus separate without gaining speed or energy — with the bias in the
-    /// velocities, pushes add up along chains of overlapping bodies and throw them.
+    /// A contact deeper than the slop is pushed out at up to `max_depenetration_speed`. Up to
+    /// `max_velocity_bias` of the push is a target of the velocity solve (a Baumgarte bias:
+    /// it holds resting stacks against the solver's residual); the rest goes to split impulses
+    /// (Catto 2006; Bullet's `splitImpulse`): on steps that have some, a second solve of the
+    /// same blocks from rest with those pushes as targets gives pseudo-velocities that move the
+    /// positions only, no body faster than `max_depenetration_speed`. Bodies created
+    /// overlapping thus separate without being thrown — with the whole push in the velocities,
+    /// pushes add up along chains of overlapping bodies.
     pub fn step(&mut self, dt: f64) -> Result<(), StepError> {
         check_time_step(dt)?;
         let start = Instant::now();
@@ -338,9 +340,10 @@ impl World {
         })
     }
 
-    /// The position pass of split impulses: when a contact is deeper than the slop, solves the
-    /// velocity problem's blocks again from rest with the penetration biases as targets, with
-    /// the same solver; the solution's velocities move positions only (see [`World::step`]).
+    /// The position pass of split impulses: when a contact's push exceeds what the velocity
+    /// solve took, solves the velocity problem's blocks again from rest with the remaining
+    /// pushes as targets, with the same solver; the solution's velocities, bounded by
+    /// `max_depenetration_speed`, move positions only (see [`World::step`]).
     fn correct_penetration(&mut self) -> Result<(), StepError> {
         let correction = &mut self.correction;
         if self.biases.iter().all(|&bias| bias == 0.0) {
