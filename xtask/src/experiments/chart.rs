@@ -232,10 +232,12 @@ fn ranges(
     (widen(lo.0, hi.0), widen(lo.1, hi.1))
 }
 
-/// Tick labels: plain decimals in a readable range, powers of ten elsewhere.
+/// Tick labels: plain decimals in a readable range, powers of ten elsewhere. A tick within
+/// 1e-12 of zero is zero: the tick positions carry round-off (a zero tick came out as −2e-16),
+/// and no chart plots quantities that small on a linear axis.
 fn tick_label(v: f64) -> String {
     let magnitude = v.abs();
-    if v == 0.0 {
+    if magnitude < 1e-12 {
         "0".to_owned()
     } else if !(1e-3..1e5).contains(&magnitude) {
         format!("{v:.0e}")

@@ -8,6 +8,8 @@
 
 mod chart;
 mod edge_toppling;
+mod free_rotation;
+mod friction_isotropy;
 mod ledge;
 mod machine;
 mod pgs_error;
@@ -90,6 +92,8 @@ struct Plan {
     overhangs: Vec<f64>,
     /// PGS sweep counts compared with the direct solver.
     iterations: Vec<usize>,
+    /// Launch angles (°) of the friction-isotropy slides.
+    slide_angles: Vec<f64>,
 }
 
 impl Plan {
@@ -109,6 +113,11 @@ impl Plan {
                 ],
             )
         };
+        let slide_angles = if args.quick {
+            vec![0.0, 30.0, 45.0]
+        } else {
+            (0..=12).map(|k| 7.5 * f64::from(k)).collect()
+        };
         Self {
             quick: args.quick,
             stack: stack_timing::Plan {
@@ -120,6 +129,7 @@ impl Plan {
             },
             overhangs,
             iterations,
+            slide_angles,
         }
     }
 }
@@ -140,6 +150,8 @@ pub fn run(args: &Args) -> Result<(), String> {
         Box::new(|| ledge::run(&plan.overhangs, out, &progress)),
         Box::new(|| spin_down::run(out, &progress)),
         Box::new(|| pgs_error::run(&plan.iterations, out, &progress)),
+        Box::new(|| friction_isotropy::run(&plan.slide_angles, out, &progress)),
+        Box::new(|| free_rotation::run(out, &progress)),
     ];
     let mut outcomes = Vec::new();
     for experiment in &experiments {

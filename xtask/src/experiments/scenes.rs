@@ -32,6 +32,12 @@ pub const LEDGE: SceneFile = scene_file!("ledge.json");
 pub const CUBE_SPIN: SceneFile = scene_file!("cube_spin.json");
 /// A standing cylinder spinning at 5 rad/s (spin-down).
 pub const CYLINDER_SPIN: SceneFile = scene_file!("cylinder_spin.json");
+/// A cube sliding at 5 m/s, 30° off the x axis (friction isotropy).
+pub const DIAGONAL_SLIDE: SceneFile = scene_file!("diagonal_slide.json");
+/// A 1×2×3 m box tumbling at ω = (1, 2, 3) rad/s in zero gravity (free rotation).
+pub const TUMBLING_BOX: SceneFile = scene_file!("tumbling_box.json");
+/// A 0.2×1×2 m plate spun about its intermediate axis, 1% off (free rotation).
+pub const INTERMEDIATE_AXIS: SceneFile = scene_file!("intermediate_axis.json");
 
 impl SceneFile {
     /// The parsed scene.
