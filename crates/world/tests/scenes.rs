@@ -189,6 +189,36 @@ fn solver_options_are_read() {
 }
 
 #[test]
+fn contact_options_are_read_and_checked() {
+    let text = scene_with(
+        4,
+        r#"  "friction_cone": "box", "max_depenetration_speed": 2.5, "max_velocity_bias": 0,"#,
+    );
+    let contact = Scene::from_json(&text).unwrap().settings.contact;
+    assert_eq!(contact.friction_cone, tatami_world::FrictionCone::Box);
+    assert_eq!(contact.max_depenetration_speed, 2.5);
+    assert_eq!(contact.max_velocity_bias, 0.0);
+    let plain = Scene::from_json(&scene_with(0, ""))
+        .unwrap()
+        .settings
+        .contact;
+    assert_eq!(
+        plain.friction_cone,
+        tatami_world::FrictionCone::Circle,
+        "isotropic unless asked for"
+    );
+    for (option, message) in [
+        (r#"  "max_depenetration_speed": 0,"#, "> 0"),
+        (r#"  "max_velocity_bias": -1,"#, "≥ 0"),
+    ] {
+        let (field, line, got) = rejection(&scene_with(4, option));
+        let name = option.trim().split('"').nth(1).unwrap();
+        assert_eq!((field.as_str(), line), (name, 4), "{option}");
+        assert!(got.contains(message), "{option}: {got}");
+    }
+}
+
+#[test]
 fn every_example_scene_loads_and_runs() {
     let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes");
     let mut count = 0;
