@@ -4,7 +4,7 @@
 
 use std::f64::consts::PI;
 
-use nalgebra::{Matrix3, Point2, Point3, Vector3};
+use nalgebra::{Matrix3, Point3, Vector3};
 use tatami_contact::{
     Contact, ContactFrame, ContactModel, ContactProjection, ContactSettings, FrictionCone, Material,
 };
@@ -28,9 +28,14 @@ fn frame(turn: f64) -> ContactFrame {
     }
 }
 
-/// A 1 kg, 2 m cube on the fixed ground, sliding at [`SPEED`] along `heading` (rad), after one
-/// step of gravity; the contact is its 2 m bottom square in a frame turned by `turn`.
-fn sliding_cube(model: ContactModel, heading: f64, turn: f64) -> Problem<ContactProjection> {
+/// A 1 kg, 2 m cube on the fixed ground moving at `velocity` after one step of gravity; the
+/// contact is its 2 m bottom square in a frame turned by `turn`.
+fn cube_on_ground(
+    model: ContactModel,
+    settings: &ContactSettings,
+    velocity: Vector3<f64>,
+    turn: f64,
+) -> Problem<ContactProjection> {
     let frame = frame(turn);
     let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
         .map(|(x, y)| frame.to_plane(&Point3::new(x, y, 0.0)));
@@ -47,16 +52,20 @@ fn sliding_cube(model: ContactModel, heading: f64, turn: f64) -> Problem<Contact
     let mut cube = SolverBody::fixed();
     cube.inv_mass = 1.0;
     cube.inv_inertia_world = Matrix3::identity() * 1.5;
-    cube.linear_velocity = Vector3::new(heading.cos(), heading.sin(), 0.0) * SPEED;
+    cube.linear_velocity = velocity;
     let mut problem = Problem {
         bodies: vec![cube, SolverBody::fixed()],
         ..Default::default()
     };
-    model
-        .build(&contact, DT, &ContactSettings::default(), &mut problem)
-        .unwrap();
+    model.build(&contact, DT, settings, &mut problem).unwrap();
     problem.bodies[0].linear_velocity.z -= G * DT;
     problem
+}
+
+/// The cube sliding at [`SPEED`] along `heading` (rad) with the default settings.
+fn sliding_cube(model: ContactModel, heading: f64, turn: f64) -> Problem<ContactProjection> {
+    let velocity = Vector3::new(heading.cos(), heading.sin(), 0.0) * SPEED;
+    cube_on_ground(model, &ContactSettings::default(), velocity, turn)
 }
 
 /// Solves with `sweeps`; returns the contact impulse on the cube (from its momentum change) and
@@ -123,30 +132,8 @@ fn the_box_pyramid_turns_a_diagonal_slide_towards_an_axis() {
         friction_cone: FrictionCone::Box,
         ..ContactSettings::default()
     };
-    let frame = frame(0.0);
-    let square =
-        [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(x, y)| Point2::new(x, y));
-    let contact = Contact {
-        body_a: BodyId(0),
-        body_b: BodyId(1),
-        centre_a: Point3::new(0.0, 0.0, 1.0),
-        centre_b: Point3::new(0.0, 0.0, -1.0),
-        frame,
-        support: ConvexPolygon::from_points(&square).unwrap(),
-        depths: vec![0.0; 4],
-        material: Material::new(MU, MU, 0.0).unwrap(),
-    };
-    let mut cube = SolverBody::fixed();
-    cube.inv_mass = 1.0;
-    cube.inv_inertia_world = Matrix3::identity() * 1.5;
-    cube.linear_velocity = Vector3::new(4.0, 3.0, -G * DT);
-    let mut problem = Problem {
-        bodies: vec![cube, SolverBody::fixed()],
-        ..Default::default()
-    };
-    ContactModel::Face
-        .build(&contact, DT, &settings, &mut problem)
-        .unwrap();
+    let velocity = Vector3::new(4.0, 3.0, 0.0);
+    let mut problem = cube_on_ground(ContactModel::Face, &settings, velocity, 0.0);
     pgs::solve(&mut problem).unwrap();
     let v = problem.bodies[0].linear_velocity;
     let dv = Vector3::new(v.x - 4.0, v.y - 3.0, 0.0);
