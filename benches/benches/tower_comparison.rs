@@ -43,7 +43,6 @@ fn tatami(n: usize, dt: f64, settings: WorldSettings) -> Result<Measured, String
     }
     let penetration = world
         .contacts()
-        .iter()
         .flat_map(|c| c.depths.iter().copied())
         .fold(0.0, f64::max);
     Ok(Measured {

@@ -1,6 +1,5 @@
 //! Choice of contact model.
 
-use nalgebra::Point3;
 use tatami_lcp::Problem;
 
 use crate::{Contact, ContactError, ContactProjection, ContactSettings, face, patch, vertex};
@@ -84,20 +83,15 @@ impl ContactModel {
         Ok(())
     }
 
-    /// The world point each block of [`ContactModel::build`] acts at, in block order: what a
-    /// solver matches between steps to warm-start a block with its previous impulses.
-    pub fn anchors(self, contact: &Contact, out: &mut Vec<Point3<f64>>) {
-        out.clear();
+    /// The support vertex that row `row` (counted from the contact's first row) of
+    /// [`ContactModel::build`] acts at, for a contact of `vertices` support vertices; `None` for
+    /// rows of the whole contact (the face model's six, the patch model's friction and twist).
+    /// With the vertex's feature id this names a row across steps, for exact warm starting.
+    pub fn row_vertex(self, vertices: usize, row: usize) -> Option<usize> {
         match self {
-            Self::Vertex => out.extend(
-                contact
-                    .support
-                    .vertices()
-                    .iter()
-                    .map(|v| contact.frame.to_world(v)),
-            ),
-            Self::Patch => out.push(contact.frame.to_world(&patch::friction_centre(contact))),
-            Self::Face => out.push(contact.frame.to_world(&contact.support.centroid())),
+            Self::Vertex => Some(row / vertex::ROWS_PER_VERTEX),
+            Self::Patch => (row < vertices).then_some(row),
+            Self::Face => None,
         }
     }
 }

@@ -1,18 +1,17 @@
-//! Collision: broad phase, parry's contact normal, support polygons, and the contacts the
-//! contact models consume. Plain data in, plain data out, so it can be run and timed alone; the
-//! workspace keeps each pair's contact, reused while neither body moves by more than
-//! [`REUSE_TOLERANCE`].
+//! Collision: broad phase, parry's contact normal, support polygons with their feature ids,
+//! written into the persistent [`ContactSet`]. Plain data in, the set out, so it can be run and
+//! timed alone; a pair neither of whose bodies moved keeps its contact (see
+//! [`ContactSet::keep`]).
 
-use std::collections::HashMap;
-
-use nalgebra::{Point3, UnitQuaternion, Vector3};
+use nalgebra::Vector3;
 use tatami_contact::{Contact, Material};
 use tatami_lcp::BodyId;
 
 use crate::body::Body;
 use crate::broad_phase::overlapping_pairs;
+use crate::contact_set::ContactSet;
 use crate::parry_bridge::{self, Collider};
-use crate::support::{Outline, support};
+use crate::support::{FeaturePoint, Outline, support};
 
 /// Reused buffers of the collision stage.
 #[derive(Debug, Default, Clone)]
@@ -21,31 +20,8 @@ pub(crate) struct CollisionWorkspace {
     is_static: Vec<bool>,
     order: Vec<usize>,
     pairs: Vec<(usize, usize)>,
-    feature_a: Vec<Point3<f64>>,
-    feature_b: Vec<Point3<f64>>,
-    /// Each touching pair's contact with the poses it was computed at, and the settings.
-    cache: HashMap<(usize, usize), Cached>,
-    cached_with: (f64, f64),
-}
-
-/// Largest motion of either body (m; a turn counts as rad × the body's size) since a pair's
-/// contact was computed for it to be reused: far below any depth that matters (the slop is
-/// 2 mm), and above the round-off by which a resting body drifts.
-pub(crate) const REUSE_TOLERANCE: f64 = 1e-9;
-
-/// A contact and where its two bodies were when it was computed.
-#[derive(Debug, Clone)]
-struct Cached {
-    contact: Contact,
-    poses: [(Point3<f64>, UnitQuaternion<f64>); 2],
-    /// Whether the pair was met by the current call (stale entries are dropped at its end).
-    seen: bool,
-}
-
-/// Whether `body` is within [`REUSE_TOLERANCE`] of `pose`.
-fn still_at(body: &Body, size: f64, pose: &(Point3<f64>, UnitQuaternion<f64>)) -> bool {
-    (body.centre - pose.0).norm() <= REUSE_TOLERANCE
-        && body.rotation.angle_to(&pose.1) * size.max(1.0) <= REUSE_TOLERANCE
+    feature_a: Vec<FeaturePoint>,
+    feature_b: Vec<FeaturePoint>,
 }
 
 /// A body's collision data, built once when the body is added.
@@ -55,20 +31,18 @@ pub(crate) struct BodyGeometry {
     pub outline: Outline,
 }
 
-/// Replaces `contacts` with one contact per touching pair (closer than `margin`).
+/// Brings `set` up to date: one contact per pair closer than `margin`, ordered from the highest
+/// to the lowest along `gravity`.
 pub(crate) fn detect(
     bodies: &[Body],
     geometry: &[BodyGeometry],
     margin: f64,
     feature_angle: f64,
+    gravity: &Vector3<f64>,
     workspace: &mut CollisionWorkspace,
-    contacts: &mut Vec<Contact>,
+    set: &mut ContactSet,
 ) {
-    contacts.clear();
-    if workspace.cached_with != (margin, feature_angle) {
-        workspace.cache.clear();
-        workspace.cached_with = (margin, feature_angle);
-    }
+    set.begin(margin, feature_angle);
     let poses: Vec<_> = bodies
         .iter()
         .map(|b| parry_bridge::pose(&b.position(), &b.rotation))
@@ -92,14 +66,9 @@ pub(crate) fn detect(
     );
     for &(i, j) in &workspace.pairs {
         let (a, b) = (&bodies[i], &bodies[j]);
-        // A pair that has not moved since its contact was computed keeps it: the same input
-        // gives the same output, and a resting stack's pairs are computed once.
-        if let Some(cached) = workspace.cache.get_mut(&(i, j))
-            && still_at(a, geometry[i].outline.size(), &cached.poses[0])
-            && still_at(b, geometry[j].outline.size(), &cached.poses[1])
-        {
-            cached.seen = true;
-            contacts.push(cached.contact.clone());
+        let now = [(a.centre, a.rotation), (b.centre, b.rotation)];
+        let sizes = [geometry[i].outline.size(), geometry[j].outline.size()];
+        if set.keep((i, j), [&now[0], &now[1]], sizes) {
             continue;
         }
         let Some(normal) = parry_bridge::contact_normal(
@@ -138,19 +107,9 @@ pub(crate) fn detect(
             depths: s.depths,
             material: combine(a, b),
         };
-        workspace.cache.insert(
-            (i, j),
-            Cached {
-                contact: contact.clone(),
-                poses: [(a.centre, a.rotation), (b.centre, b.rotation)],
-                seen: true,
-            },
-        );
-        contacts.push(contact);
+        set.update(contact, s.features, now);
     }
-    workspace
-        .cache
-        .retain(|_, cached| std::mem::take(&mut cached.seen));
+    set.end(gravity);
 }
 
 /// The pair's material: the average of the two bodies' coefficients.

@@ -3,15 +3,15 @@
 use std::ops::Range;
 use std::time::Instant;
 
-use nalgebra::{Point3, Vector3};
+use nalgebra::Vector3;
 use tatami_contact::{Contact, ContactProjection};
-use tatami_lcp::pgs::{self, PgsParams, PgsWorkspace, Record, Support, WarmStart};
+use tatami_lcp::pgs::{self, PgsParams, PgsWorkspace, Record, WarmStart};
 use tatami_lcp::{LcpError, Problem, SolverBody, direct};
 
 use crate::collision::{self, BodyGeometry, CollisionWorkspace};
+use crate::contact_set::ContactSet;
 use crate::parry_bridge::Collider;
 use crate::support::Outline;
-use crate::warm_start::WarmStartCache;
 use crate::{
     Body, BodyDesc, Solver, StepError, StepTimings, WorldBuilder, WorldError, WorldSettings,
 };
@@ -37,10 +37,9 @@ pub struct World {
     pub(crate) settings: WorldSettings,
     bodies: Vec<Body>,
     geometry: Vec<BodyGeometry>,
-    contacts: Vec<Contact>,
+    /// Every touching pair and its state across steps, in Gauss–Seidel order.
+    contact_set: ContactSet,
     problem: Problem<ContactProjection>,
-    /// Blocks of `problem` belonging to each contact.
-    contact_blocks: Vec<Range<usize>>,
     /// The part of each row's penetration push left to the position pass (split impulses).
     biases: Vec<f64>,
     /// The position-correction problem of the last step: `problem`'s blocks with the biases as
@@ -49,9 +48,6 @@ pub struct World {
     correction: Problem<ContactProjection>,
     collision_workspace: CollisionWorkspace,
     pgs_workspace: PgsWorkspace,
-    warm_start: WarmStartCache,
-    /// Blocks from the ground up, each with the body that carries the other.
-    shock_order: Vec<(usize, Support)>,
     timings: StepTimings,
     time: f64,
     /// Kahan compensation of `time`, so a thousand steps of 0.01 s end at exactly 10 s.
@@ -71,15 +67,12 @@ impl World {
             settings,
             bodies: Vec::new(),
             geometry: Vec::new(),
-            contacts: Vec::new(),
+            contact_set: ContactSet::default(),
             problem: Problem::default(),
-            contact_blocks: Vec::new(),
             biases: Vec::new(),
             correction: Problem::default(),
             collision_workspace: CollisionWorkspace::default(),
             pgs_workspace: PgsWorkspace::default(),
-            warm_start: WarmStartCache::default(),
-            shock_order: Vec::new(),
             timings: StepTimings::default(),
             time: 0.0,
             time_compensation: 0.0,
@@ -149,9 +142,10 @@ impl World {
         Ok(())
     }
 
-    /// Contacts found by the last step (at the start of that step's positions).
-    pub fn contacts(&self) -> &[Contact] {
-        &self.contacts
+    /// Contacts found by the last step (at the start of that step's positions), one per
+    /// touching pair, in the solver's Gauss–Seidel order: highest first along gravity.
+    pub fn contacts(&self) -> impl ExactSizeIterator<Item = &Contact> + Clone {
+        self.contact_set.contacts()
     }
 
     /// The last step's constraint problem, with the solved impulses in its rows (or, after
@@ -164,7 +158,7 @@ impl World {
     /// The blocks of [`World::problem`] that belong to contact `index` of [`World::contacts`]
     /// (`None` past the last contact).
     pub fn contact_blocks(&self, index: usize) -> Option<Range<usize>> {
-        self.contact_blocks.get(index).cloned()
+        self.contact_set.get(index).map(|(_, blocks)| blocks)
     }
 
     /// Time spent in each stage of the last step.
@@ -254,17 +248,17 @@ impl World {
         Ok(&self.problem)
     }
 
-    /// Collision: contacts at the current positions, highest first.
+    /// Collision: the contact set brought to the current positions, highest contact first.
     fn detect(&mut self) {
         collision::detect(
             &self.bodies,
             &self.geometry,
             self.settings.contact_margin,
             self.settings.feature_angle,
+            &self.gravity,
             &mut self.collision_workspace,
-            &mut self.contacts,
+            &mut self.contact_set,
         );
-        order_against_gravity(&mut self.contacts, &self.gravity);
     }
 
     /// Contact rows from the velocities at the start of the step, then gravity's impulse.
@@ -276,19 +270,22 @@ impl World {
             .extend(self.bodies.iter().map(Body::solver_body));
         problem.rows.clear();
         problem.blocks.clear();
-        self.contact_blocks.clear();
         self.biases.clear();
         let contact_settings = self.settings.contact_for_solver();
-        for contact in &self.contacts {
+        let pairs = self.contact_set.contacts().len();
+        for index in 0..pairs {
             let first = problem.blocks.len();
-            self.settings
-                .model
-                .build_split(contact, dt, &contact_settings, problem, &mut self.biases)
-                .map_err(|source| StepError::Contact {
-                    pair: pair_name(&self.bodies, contact),
-                    source,
-                })?;
-            self.contact_blocks.push(first..problem.blocks.len());
+            if let Some((contact, _)) = self.contact_set.get(index) {
+                self.settings
+                    .model
+                    .build_split(contact, dt, &contact_settings, problem, &mut self.biases)
+                    .map_err(|source| StepError::Contact {
+                        pair: pair_name(&self.bodies, contact),
+                        source,
+                    })?;
+            }
+            self.contact_set
+                .set_blocks(index, first..problem.blocks.len());
         }
         for (solver_body, body) in problem.bodies.iter_mut().zip(&self.bodies) {
             if !body.is_fixed() {
@@ -304,31 +301,20 @@ impl World {
             Solver::Pgs(params) => {
                 let warm = params.warm_start == WarmStart::On;
                 if warm {
-                    self.warm_start.load(
-                        model,
-                        &self.contacts,
-                        &self.contact_blocks,
-                        &mut self.problem,
-                    );
+                    self.contact_set.warm_start(model, &mut self.problem);
                 }
                 let mut result =
                     pgs::solve_in_place(&mut self.problem, &mut self.pgs_workspace, params)
                         .map(drop);
                 if self.settings.shock_propagation && result.is_ok() {
-                    self.shock_order();
                     result = pgs::shock_propagation(
                         &mut self.problem,
                         &mut self.pgs_workspace,
-                        &self.shock_order,
+                        self.contact_set.shock_order(&self.gravity),
                     );
                 }
                 if warm && result.is_ok() {
-                    self.warm_start.store(
-                        model,
-                        &self.contacts,
-                        &self.contact_blocks,
-                        &self.problem,
-                    );
+                    self.contact_set.store(model, &self.problem);
                 }
                 result
             }
@@ -403,27 +389,8 @@ impl World {
             | LcpError::Unsupported { block } => *block,
             _ => return None,
         };
-        let index = self
-            .contact_blocks
-            .iter()
-            .position(|blocks| blocks.contains(&block))?;
-        Some(pair_name(&self.bodies, &self.contacts[index]))
-    }
-
-    /// The blocks from the lowest contact to the highest (contacts are kept highest first), each
-    /// with its body lower along gravity as the support.
-    fn shock_order(&mut self) {
-        self.shock_order.clear();
-        for (contact, blocks) in self.contacts.iter().zip(&self.contact_blocks).rev() {
-            let height = |c: &Point3<f64>| -c.coords.dot(&self.gravity);
-            let support = if height(&contact.centre_a) <= height(&contact.centre_b) {
-                Support::A
-            } else {
-                Support::B
-            };
-            self.shock_order
-                .extend(blocks.clone().map(|block| (block, support)));
-        }
+        let contact = self.contact_set.contact_of_block(block)?;
+        Some(pair_name(&self.bodies, contact))
     }
 
     /// Semi-implicit Euler: the solved velocities move the bodies; each turns by the
@@ -458,15 +425,6 @@ fn check_time_step(dt: f64) -> Result<(), StepError> {
     } else {
         Err(StepError::InvalidTimeStep(dt))
     }
-}
-
-/// Sorts contacts from the highest to the lowest along gravity. Gauss–Seidel then carries a
-/// stack's weight down to its base within one sweep, instead of one level per sweep.
-fn order_against_gravity(contacts: &mut [Contact], gravity: &Vector3<f64>) {
-    contacts.sort_by(|a, b| {
-        let height = |c: &Contact| c.frame.origin.coords.dot(gravity);
-        height(a).total_cmp(&height(b))
-    });
 }
 
 /// `a–b` from the contact's body names.

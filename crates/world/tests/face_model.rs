@@ -255,7 +255,7 @@ fn the_centre_of_pressure_of_a_tetrahedron_leans_toward_the_pulled_vertex() {
         .build()
         .unwrap();
     run(&mut w, 0.5, assert_face_wrenches);
-    let contact = &w.contacts()[0];
+    let contact = w.contacts().next().expect("one contact");
     assert_eq!(contact.support.vertices().len(), 3);
     let block = &w.problem().blocks[w.contact_blocks(0).expect("one contact").start];
     let impulses: Vec<f64> = w.problem().rows[block.rows.clone()]

@@ -92,7 +92,7 @@ fn contacts_kept_for_resting_pairs_match_contacts_computed_afresh() {
     let mut world = tower(10, true);
     run(&mut world, 1.0, |_| {});
     let kept = world.prepare_step(common::DT).unwrap().rows.len();
-    let kept_contacts = world.contacts().to_vec();
+    let kept_contacts: Vec<_> = world.contacts().cloned().collect();
     let mut fresh = world
         .bodies()
         .iter()

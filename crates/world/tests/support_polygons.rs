@@ -10,14 +10,13 @@ use tatami_world::World;
 fn contacts_with_floor(body: tatami_world::BodyDesc) -> Vec<tatami_contact::Contact> {
     let mut world = World::builder().body(floor()).body(body).build().unwrap();
     world.step(DT).unwrap();
-    world.contacts().to_vec()
+    world.contacts().cloned().collect()
 }
 
 /// The contact between bodies 1 and 2 (two stacked cubes on the floor).
 fn between_cubes(world: &World) -> &tatami_contact::Contact {
     world
         .contacts()
-        .iter()
         .find(|c| c.body_a.0 == 1 && c.body_b.0 == 2)
         .expect("a contact between the cubes")
 }
@@ -45,7 +44,7 @@ fn a_wide_thin_floor_still_touches_with_its_top_face_only() {
             .build()
             .unwrap();
         common::run(&mut world, 1.0, |_| {});
-        let c = &world.contacts()[0];
+        let c = world.contacts().next().expect("a contact");
         assert_eq!(c.support.vertices().len(), 4, "{width} m slab");
         assert!(
             (c.support.area() - SIDE * SIDE).abs() < 1e-9,

@@ -12,11 +12,7 @@ fn a_resting_cube_stays_put_for_ten_seconds() {
     let start = world.bodies()[1].position();
     let mut deepest: f64 = 0.0;
     run(&mut world, 10.0, |w| {
-        deepest = w
-            .contacts()
-            .iter()
-            .map(|c| c.depth())
-            .fold(deepest, f64::max);
+        deepest = w.contacts().map(|c| c.depth()).fold(deepest, f64::max);
     });
     let cube = &world.bodies()[1];
     let drift = (cube.position() - start).norm();
@@ -44,11 +40,7 @@ fn a_dropped_cube_lands_and_rests_without_gaining_energy() {
     let mut worst_gain: f64 = 0.0;
     let mut deepest: f64 = 0.0;
     run(&mut world, 4.0, |w| {
-        deepest = w
-            .contacts()
-            .iter()
-            .map(|c| c.depth())
-            .fold(deepest, f64::max);
+        deepest = w.contacts().map(|c| c.depth()).fold(deepest, f64::max);
         let excess = (deepest - settings.slop).max(0.0);
         let allowance = G * excess + 0.5 * (settings.bias_rate * excess / DT).powi(2);
         worst_gain = worst_gain.max(w.total_energy() - e0 - allowance);

@@ -1,0 +1,288 @@
+//! The persistent contact set: one entry per touching pair of bodies, owning everything about the
+//! pair across steps — its contact (frame, support polygon, depths, material), a feature id per
+//! support vertex, where the two bodies were when the contact was computed, the blocks its rows
+//! take in this step's problem, and the impulses it ended the last solve with, by feature.
+//!
+//! A step uses it in stages, as Box2D v3's solver does: collision [`begin`](ContactSet::begin)s
+//! a pass, [`keep`](ContactSet::keep)s each pair that has not moved or
+//! [`update`](ContactSet::update)s it, and [`end`](ContactSet::end)s the pass, which is where
+//! pairs no longer touching are dropped; rows are built in set order, each pair recording its
+//! blocks; [`warm_start`](ContactSet::warm_start) writes into every row the impulse of the row
+//! with the same key last step — the key is the feature id of the support vertex the row acts at
+//! (or the whole contact) and the row's rank there, so a row is matched exactly or starts from
+//! zero, never from a neighbour's impulse; after the solve [`store`](ContactSet::store) keeps
+//! them.
+//!
+//! The set's order is the Gauss–Seidel order: from the highest contact to the lowest along
+//! gravity, so a stack's weight reaches its base within one sweep instead of one level per sweep
+//! (bottom-up lowered the first step's error of a 10-tower only from 0.094 to 0.080 m/s).
+
+use std::collections::HashMap;
+use std::ops::Range;
+
+use nalgebra::{Point3, UnitQuaternion, Vector3};
+use tatami_contact::{Contact, ContactModel, ContactProjection};
+use tatami_lcp::Problem;
+use tatami_lcp::pgs::Support;
+
+use crate::support::FeatureId;
+
+/// Largest motion of either body (m; a turn counts as rad × the body's size) since a pair's
+/// contact was computed for it to be kept: far below any depth that matters (the slop is 2 mm),
+/// and above the round-off by which a resting body drifts.
+pub(crate) const REUSE_TOLERANCE: f64 = 1e-9;
+
+/// Where a body was: centre of mass and orientation.
+type Pose = (Point3<f64>, UnitQuaternion<f64>);
+
+/// A row's name across steps: the feature id of the support vertex it acts at (`None` for rows
+/// of the whole contact) and its rank among the contact's rows there.
+type RowKey = (Option<FeatureId>, usize);
+
+/// What the set keeps of one pair besides its contact.
+#[derive(Debug, Clone)]
+struct PairState {
+    features: Vec<FeatureId>,
+    poses: [Pose; 2],
+    /// Blocks of this step's problem.
+    blocks: Range<usize>,
+    /// Last solve's impulses, sorted by key, and the model they were solved under.
+    impulses: Vec<(RowKey, f64)>,
+    model: Option<ContactModel>,
+    /// Met by the current collision pass.
+    seen: bool,
+}
+
+/// One touching pair.
+#[derive(Debug, Clone)]
+struct Entry {
+    contact: Contact,
+    state: PairState,
+}
+
+/// Every touching pair, in Gauss–Seidel order.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct ContactSet {
+    entries: Vec<Entry>,
+    /// Position in `entries` of each pair `(body A, body B)`, rebuilt by [`ContactSet::end`].
+    index: HashMap<(usize, usize), usize>,
+    /// Collision settings the contacts were computed with; others invalidate them.
+    computed_with: (f64, f64),
+    /// Scratch: row keys of one contact.
+    keys: Vec<RowKey>,
+    /// Scratch: the shock-propagation order.
+    shock_order: Vec<(usize, Support)>,
+}
+
+impl ContactSet {
+    /// Starts a collision pass with the given contact margin and feature angle: contacts computed
+    /// with other values are dropped, and every pair is marked unmet.
+    pub(crate) fn begin(&mut self, margin: f64, feature_angle: f64) {
+        if self.computed_with != (margin, feature_angle) {
+            self.entries.clear();
+            self.index.clear();
+            self.computed_with = (margin, feature_angle);
+        }
+        for entry in &mut self.entries {
+            entry.state.seen = false;
+        }
+    }
+
+    /// Keeps pair `(a, b)`'s contact if neither body moved by more than [`REUSE_TOLERANCE`]
+    /// since it was computed (`sizes` scale the turns); returns whether it did. A pair that has
+    /// not moved gets the same contact again, and a resting stack's pairs are computed once.
+    pub(crate) fn keep(
+        &mut self,
+        pair: (usize, usize),
+        poses: [&Pose; 2],
+        sizes: [f64; 2],
+    ) -> bool {
+        let Some(entry) = self.index.get(&pair).map(|&k| &mut self.entries[k]) else {
+            return false;
+        };
+        let still = |was: &Pose, now: &Pose, size: f64| {
+            (now.0 - was.0).norm() <= REUSE_TOLERANCE
+                && now.1.angle_to(&was.1) * size.max(1.0) <= REUSE_TOLERANCE
+        };
+        let kept = (0..2).all(|k| still(&entry.state.poses[k], poses[k], sizes[k]));
+        entry.state.seen |= kept;
+        kept
+    }
+
+    /// Sets the contact of the pair it names, computed at `poses` with a feature id per support
+    /// vertex; its impulses carry over by feature.
+    pub(crate) fn update(&mut self, contact: Contact, features: Vec<FeatureId>, poses: [Pose; 2]) {
+        let pair = (contact.body_a.0, contact.body_b.0);
+        match self.index.get(&pair) {
+            Some(&k) => {
+                let entry = &mut self.entries[k];
+                entry.contact = contact;
+                entry.state.features = features;
+                entry.state.poses = poses;
+                entry.state.seen = true;
+            }
+            None => {
+                self.index.insert(pair, self.entries.len());
+                self.entries.push(Entry {
+                    contact,
+                    state: PairState {
+                        features,
+                        poses,
+                        blocks: 0..0,
+                        impulses: Vec::new(),
+                        model: None,
+                        seen: true,
+                    },
+                });
+            }
+        }
+    }
+
+    /// Ends a collision pass: drops the pairs it did not meet (no longer touching) and orders the
+    /// rest from the highest contact to the lowest along `gravity`.
+    pub(crate) fn end(&mut self, gravity: &Vector3<f64>) {
+        self.entries.retain(|e| e.state.seen);
+        let height = |e: &Entry| e.contact.frame.origin.coords.dot(gravity);
+        self.entries.sort_by(|a, b| height(a).total_cmp(&height(b)));
+        self.index.clear();
+        for (k, e) in self.entries.iter().enumerate() {
+            self.index
+                .insert((e.contact.body_a.0, e.contact.body_b.0), k);
+        }
+    }
+
+    /// The contacts, in Gauss–Seidel order.
+    pub(crate) fn contacts(&self) -> impl ExactSizeIterator<Item = &Contact> + Clone {
+        self.entries.iter().map(|e| &e.contact)
+    }
+
+    /// The contact at `index` of the set's order and its blocks in this step's problem.
+    pub(crate) fn get(&self, index: usize) -> Option<(&Contact, Range<usize>)> {
+        self.entries
+            .get(index)
+            .map(|e| (&e.contact, e.state.blocks.clone()))
+    }
+
+    /// Records that the contact at `index` took `blocks` of this step's problem.
+    pub(crate) fn set_blocks(&mut self, index: usize, blocks: Range<usize>) {
+        self.entries[index].state.blocks = blocks;
+    }
+
+    /// The contact owning block `block` of this step's problem.
+    pub(crate) fn contact_of_block(&self, block: usize) -> Option<&Contact> {
+        self.entries
+            .iter()
+            .find(|e| e.state.blocks.contains(&block))
+            .map(|e| &e.contact)
+    }
+
+    /// Writes into every row of `problem` the impulse its key had after the last solve under
+    /// `model`; rows whose key is new keep zero.
+    pub(crate) fn warm_start(
+        &mut self,
+        model: ContactModel,
+        problem: &mut Problem<ContactProjection>,
+    ) {
+        for entry in &self.entries {
+            if entry.state.model != Some(model) || entry.state.blocks.is_empty() {
+                continue;
+            }
+            let rows = rows_of(problem, &entry.state.blocks);
+            row_keys(model, &entry.state.features, rows.len(), &mut self.keys);
+            for (row, key) in problem.rows[rows].iter_mut().zip(&self.keys) {
+                if let Ok(k) = entry.state.impulses.binary_search_by(|(k, _)| k.cmp(key)) {
+                    row.impulse = entry.state.impulses[k].1;
+                }
+            }
+        }
+    }
+
+    /// Keeps the solved impulses of every row of `problem`, by key, for the next warm start.
+    pub(crate) fn store(&mut self, model: ContactModel, problem: &Problem<ContactProjection>) {
+        for entry in &mut self.entries {
+            let state = &mut entry.state;
+            state.impulses.clear();
+            state.model = Some(model);
+            if state.blocks.is_empty() {
+                continue;
+            }
+            let rows = rows_of(problem, &state.blocks);
+            row_keys(model, &state.features, rows.len(), &mut self.keys);
+            state.impulses.extend(
+                self.keys
+                    .iter()
+                    .zip(&problem.rows[rows])
+                    .map(|(key, row)| (*key, row.impulse)),
+            );
+            state.impulses.sort_by(|a, b| a.0.cmp(&b.0));
+        }
+    }
+
+    /// The blocks from the lowest contact to the highest, each with the body that is lower along
+    /// `gravity` as the support (for [`tatami_lcp::pgs::shock_propagation`]).
+    pub(crate) fn shock_order(&mut self, gravity: &Vector3<f64>) -> &[(usize, Support)] {
+        self.shock_order.clear();
+        for entry in self.entries.iter().rev() {
+            let height = |c: &Point3<f64>| -c.coords.dot(gravity);
+            let contact = &entry.contact;
+            let support = if height(&contact.centre_a) <= height(&contact.centre_b) {
+                Support::A
+            } else {
+                Support::B
+            };
+            self.shock_order
+                .extend(entry.state.blocks.clone().map(|block| (block, support)));
+        }
+        &self.shock_order
+    }
+}
+
+/// The rows of `problem` that `blocks` span.
+fn rows_of<P>(problem: &Problem<P>, blocks: &Range<usize>) -> Range<usize> {
+    let first = &problem.blocks[blocks.start];
+    let last = &problem.blocks[blocks.end - 1];
+    first.rows.start..last.rows.end
+}
+
+/// The keys of a contact's `rows` rows under `model`, for support vertices with `features`.
+fn row_keys(model: ContactModel, features: &[FeatureId], rows: usize, out: &mut Vec<RowKey>) {
+    out.clear();
+    for row in 0..rows {
+        let feature = model
+            .row_vertex(features.len(), row)
+            .and_then(|v| features.get(v).copied());
+        let rank = out.iter().filter(|(f, _)| *f == feature).count();
+        out.push((feature, rank));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rows_are_named_by_feature_and_rank() {
+        let features = [FeatureId::A(4), FeatureId::Crossing(1, 2)];
+        let mut keys = Vec::new();
+        row_keys(ContactModel::Vertex, &features, 6, &mut keys);
+        let vertex: Vec<RowKey> = [0, 1, 2, 0, 1, 2]
+            .iter()
+            .enumerate()
+            .map(|(r, &rank)| (Some(features[r / 3]), rank))
+            .collect();
+        assert_eq!(keys, vertex);
+        row_keys(ContactModel::Patch, &features, 5, &mut keys);
+        assert_eq!(
+            keys,
+            [
+                (Some(features[0]), 0),
+                (Some(features[1]), 0),
+                (None, 0),
+                (None, 1),
+                (None, 2)
+            ]
+        );
+        row_keys(ContactModel::Face, &features, 6, &mut keys);
+        assert_eq!(keys, (0..6).map(|r| (None, r)).collect::<Vec<_>>());
+    }
+}
