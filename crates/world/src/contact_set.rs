@@ -214,7 +214,7 @@ impl ContactSet {
                     .zip(&problem.rows[rows])
                     .map(|(key, row)| (*key, row.impulse)),
             );
-            state.impulses.sort_by(|a, b| a.0.cmp(&b.0));
+            state.impulses.sort_by_key(|(key, _)| *key);
         }
     }
 
