@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use tatami_world::scene::Scene;
-use tatami_world::{ContactModel, DirectParams, PgsParams, Solver};
+use tatami_world::{ContactModel, DirectParams, Solver};
 
 use crate::trajectory::TrajectoryWriter;
 
@@ -106,7 +106,7 @@ fn apply_overrides(scene: &mut Scene, args: &Args) -> Result<(), String> {
     match args.solver.as_deref() {
         Some("direct") => scene.settings.solver = Solver::Direct(DirectParams::default()),
         Some(_) if !matches!(scene.settings.solver, Solver::Pgs(_)) => {
-            scene.settings.solver = Solver::Pgs(PgsParams::default());
+            scene.settings.solver = Solver::default();
         }
         _ => {}
     }

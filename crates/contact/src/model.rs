@@ -8,11 +8,12 @@ use crate::{Contact, ContactError, ContactProjection, ContactSettings, face, pat
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ContactModel {
     /// One point constraint (3 rows) per support-polygon vertex (the paper's baseline).
-    #[default]
     Vertex,
     /// Normal rows per vertex, friction and twist at the friction centre (Rapier, Jolt, Box3D).
     Patch,
-    /// One 6-row constraint per face with torsional friction and the ZMP bound (the paper's).
+    /// One 6-row constraint per face with torsional friction and the ZMP bound (the paper's
+    /// method; the default).
+    #[default]
     Face,
 }
 

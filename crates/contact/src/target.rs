@@ -56,14 +56,21 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_shallow_overlap_is_pushed_out_by_the_velocity_target() {
-        let s = ContactSettings::default();
+    fn the_push_goes_to_the_velocity_target_up_to_its_share() {
+        let s = ContactSettings {
+            max_velocity_bias: 0.2,
+            ..ContactSettings::default()
+        };
         let none = normal_target(0.001, 0.0, 0.0, 0.01, &s);
         assert_eq!((none.velocity, none.bias), (0.0, 0.0));
         // 0.1 · (0.007 − 0.002) / 0.01 = 0.05 m/s, below the velocity solve's share.
         let t = normal_target(0.007, 0.0, 0.0, 0.01, &s);
         assert!((t.velocity - 0.05).abs() < 1e-12);
         assert_eq!(t.bias, 0.0);
+        // By default the whole push is for the position pass.
+        let split = normal_target(0.007, 0.0, 0.0, 0.01, &ContactSettings::default());
+        assert_eq!(split.velocity, 0.0);
+        assert!((split.bias - 0.05).abs() < 1e-12);
     }
 
     #[test]

@@ -2,7 +2,7 @@
 //! compatibly).
 //!
 //! Beyond DESIGN §6's fields a scene may set `steps`, `solver` (`"pgs"` or `"direct"`),
-//! `warm_start` and `shock_propagation` (booleans, off by default), `friction_cone` (`"circle"`,
+//! `warm_start` (on by default) and `shock_propagation` (off by default), `friction_cone` (`"circle"`,
 //! the isotropic default, or `"box"`, the paper's pyramid), `bias_rate`, `slop`,
 //! `max_depenetration_speed` (m/s, > 0) and `max_velocity_bias` (m/s, ≥ 0; see
 //! [`tatami_contact::ContactSettings`]).
@@ -264,14 +264,17 @@ impl RawScene {
         if let Some(ModelName(model)) = self.model {
             settings.model = model;
         }
+        let Solver::Pgs(default_pgs) = Solver::default() else {
+            unreachable!("the default solver is PGS")
+        };
         let pgs = PgsParams {
-            iterations: self.iterations.unwrap_or(PgsParams::default().iterations),
-            warm_start: if self.warm_start == Some(true) {
-                WarmStart::On
-            } else {
-                WarmStart::Off
+            iterations: self.iterations.unwrap_or(default_pgs.iterations),
+            warm_start: match self.warm_start {
+                Some(true) => WarmStart::On,
+                Some(false) => WarmStart::Off,
+                None => default_pgs.warm_start,
             },
-            ..PgsParams::default()
+            ..default_pgs
         };
         settings.solver = match self.solver {
             Some(SolverName::Direct) => Solver::Direct(DirectParams::default()),
