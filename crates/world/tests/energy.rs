@@ -100,7 +100,7 @@ fn scene(seed: u64) -> World {
             .name("floor")
             .position([0.0, 0.0, -1.0]),
     );
-    let drop = if seed % 2 == 0 { 0.01 } else { 2.0 };
+    let drop = if seed.is_multiple_of(2) { 0.01 } else { 2.0 };
     let mut placed: Vec<(Point3<f64>, f64)> = Vec::new();
     let count = 1 + (random.next() * 6.0) as usize;
     while placed.len() < count {
