@@ -201,6 +201,9 @@ macro_rules! rapier_scene {
     };
 }
 
+/// One engine's run of a case.
+type Engine = fn(&Case, &Scene) -> Result<Measured, String>;
+
 rapier_scene!(rapier_f64, rapier3d_f64, f64);
 rapier_scene!(rapier_f32, rapier3d, f32);
 
@@ -217,7 +220,7 @@ fn main() {
                 continue;
             }
         };
-        let engines: [(&str, fn(&Case, &Scene) -> Result<Measured, String>); 3] = [
+        let engines: [(&str, Engine); 3] = [
             ("tatami defaults", tatami),
             ("rapier3d-f64", rapier_f64),
             ("rapier3d (f32)", rapier_f32),
