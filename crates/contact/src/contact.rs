@@ -50,6 +50,9 @@ impl Contact {
                 });
             }
         }
+        // The fields are public: a material built by hand gets the checks of `Material::new`.
+        let m = &self.material;
+        Material::new(m.static_friction, m.kinetic_friction, m.restitution)?;
         let vertices = self.support.vertices().len();
         if self.depths.len() != vertices {
             return Err(ContactError::DepthCount {
@@ -74,5 +77,39 @@ impl Contact {
             return Err(ContactError::NonFinite { what: "origin" });
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use nalgebra::{Point2, Vector3};
+
+    use super::*;
+
+    /// A `Material` built by hand with NaN or negative friction made `f64::clamp` panic in the
+    /// friction projection; `validate` now refuses it.
+    #[test]
+    fn a_hand_built_material_is_checked() {
+        let contact = |static_friction: f64| Contact {
+            body_a: BodyId(0),
+            body_b: BodyId(1),
+            centre_a: Point3::new(0.0, 0.0, 1.0),
+            centre_b: Point3::new(0.0, 0.0, -1.0),
+            frame: ContactFrame::from_normal(Point3::origin(), Vector3::z()).unwrap(),
+            support: ConvexPolygon::from_points(&[Point2::origin()]).unwrap(),
+            depths: vec![0.0],
+            material: Material {
+                static_friction,
+                kinetic_friction: 0.5,
+                restitution: 0.0,
+            },
+        };
+        assert!(contact(0.5).validate(2).is_ok());
+        for bad in [f64::NAN, -0.1, f64::INFINITY] {
+            assert!(matches!(
+                contact(bad).validate(2),
+                Err(ContactError::InvalidFriction { .. })
+            ));
+        }
     }
 }

@@ -77,9 +77,10 @@ pub fn solve(
         entering = tableau.complement(leaving);
     }
     let z = tableau.solution();
-    let polished = tableau
-        .polish(a, q)
-        .filter(|p| residual::lcp_error(a, q, p) < residual::lcp_error(a, q, &z));
+    let polished = tableau.polish(a, q).filter(|p| {
+        let error = |z| residual::lcp_error(a, q, z).unwrap_or(f64::INFINITY);
+        error(p) < error(&z)
+    });
     Ok((polished.unwrap_or(z), pivots))
 }
 

@@ -76,7 +76,9 @@ impl<P> Problem<P> {
         }
         let mut next_row = 0;
         for (block, b) in self.blocks.iter().enumerate() {
-            let fits = b.rows.start == next_row && b.rows.end <= self.rows.len();
+            let fits = b.rows.start == next_row
+                && b.rows.start <= b.rows.end
+                && b.rows.end <= self.rows.len();
             let known = b.body_a.0 < self.bodies.len() && b.body_b.0 < self.bodies.len();
             if !fits || !known {
                 return Err(LcpError::MalformedBlock { block });
@@ -90,6 +92,23 @@ impl<P> Problem<P> {
             return Err(LcpError::MalformedBlock {
                 block: self.blocks.len(),
             });
+        }
+        Ok(())
+    }
+}
+
+impl<P: Projection> Problem<P> {
+    /// [`Problem::validate`], and every friction bound names a row of its own block.
+    pub fn validate_bounds(&self) -> Result<(), LcpError> {
+        self.validate()?;
+        for (index, block) in self.blocks.iter().enumerate() {
+            let rows = block.rows.len();
+            let outside = (0..rows).any(|row| {
+                matches!(block.projection.bound(row), Some(RowBound::Friction { normal, .. }) if normal >= rows)
+            });
+            if outside {
+                return Err(LcpError::MalformedBlock { block: index });
+            }
         }
         Ok(())
     }

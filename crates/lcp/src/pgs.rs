@@ -134,11 +134,11 @@ pub fn solve_in_place<P: Projection>(
     workspace: &mut PgsWorkspace,
     params: &PgsParams,
 ) -> Result<PgsInfo, LcpError> {
-    problem.validate()?;
+    problem.validate_bounds()?;
     prepare(problem, workspace, params.warm_start);
     let mut info = PgsInfo {
         sweeps: params.iterations,
-        row_updates: params.iterations * problem.rows.len(),
+        row_updates: params.iterations.saturating_mul(problem.rows.len()),
         impulse_change: Vec::new(),
     };
     if params.record == Record::ImpulseChange {

@@ -252,6 +252,24 @@ fn malformed_blocks_are_rejected() {
         pgs::solve(&mut problem).unwrap_err(),
         LcpError::MalformedBlock { block: 1 }
     );
+    // A reversed row range, and a friction bound scaled by a row outside its block: errors
+    // naming the block, not panics (both once indexed out of bounds).
+    let mut reversed = cube_on_ground(Vector3::zeros(), 0.5);
+    let rows = reversed.blocks[0].rows.clone();
+    reversed.blocks[0].rows = rows.end..rows.start;
+    assert!(matches!(
+        pgs::solve(&mut reversed).unwrap_err(),
+        LcpError::MalformedBlock { block: 0 }
+    ));
+    let mut stray = cube_on_ground(Vector3::zeros(), 0.5);
+    stray.blocks[2].projection.0[1] = RowBound::Friction {
+        normal: 7,
+        coefficient: 0.5,
+    };
+    assert_eq!(
+        pgs::solve(&mut stray).unwrap_err(),
+        LcpError::MalformedBlock { block: 2 }
+    );
 }
 
 /// Random bodies and one-row blocks with constant box bounds: one-row blocks make the block

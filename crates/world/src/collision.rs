@@ -114,9 +114,11 @@ pub(crate) fn detect(
 
 /// The pair's material: the average of the two bodies' coefficients.
 fn combine(a: &Body, b: &Body) -> Material {
+    // Halves first: the sum of two coefficients of 1e308 overflows to ∞.
+    let average = |x: f64, y: f64| 0.5 * x + 0.5 * y;
     Material {
-        static_friction: 0.5 * (a.static_friction + b.static_friction),
-        kinetic_friction: 0.5 * (a.kinetic_friction + b.kinetic_friction),
-        restitution: 0.5 * (a.restitution + b.restitution),
+        static_friction: average(a.static_friction, b.static_friction),
+        kinetic_friction: average(a.kinetic_friction, b.kinetic_friction),
+        restitution: average(a.restitution, b.restitution),
     }
 }

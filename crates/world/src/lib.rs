@@ -24,7 +24,7 @@ mod world;
 pub use body::{Body, BodyDesc, DEFAULT_DENSITY, DEFAULT_FRICTION, MassSpec};
 pub use builder::{DEFAULT_GRAVITY, WorldBuilder};
 pub use error::{StepError, WorldError};
-pub use settings::{Solver, WorldSettings};
+pub use settings::{MAX_ITERATIONS, Solver, WorldSettings};
 pub use shape::{MassProperties, Shape};
 pub use tatami_contact::{ContactModel, ContactSettings, FrictionCone};
 pub use tatami_lcp::direct::DirectParams;

@@ -252,8 +252,11 @@ struct RawScene {
 
 fn at_least_one<'de, D: Deserializer<'de>>(d: D) -> Result<Option<usize>, D::Error> {
     let n = usize::deserialize(d)?;
-    if n == 0 {
-        return Err(serde::de::Error::custom("must be ≥ 1, got 0"));
+    if !(1..=crate::settings::MAX_ITERATIONS).contains(&n) {
+        return Err(serde::de::Error::custom(format!(
+            "must be 1 to {}, got {n}",
+            crate::settings::MAX_ITERATIONS
+        )));
     }
     Ok(Some(n))
 }
@@ -404,8 +407,9 @@ impl BodyFields {
             desc.position = vector(p).into();
         }
         if let Some(r) = self.rotation {
+            // Scaled by its largest component first: the norm of [1e200, 1e200, 0] overflows.
             let axis = vector(r.axis);
-            let axis = Unit::try_new(axis, 0.0)
+            let axis = Unit::try_new(axis / axis.amax().max(f64::MIN_POSITIVE), 0.0)
                 .ok_or_else(|| BodyProblem("rotation.axis must not be zero".into()))?;
             desc.rotation = UnitQuaternion::from_axis_angle(&axis, r.angle_deg.0.to_radians());
         }

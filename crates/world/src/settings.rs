@@ -6,6 +6,10 @@ use tatami_lcp::pgs::{PgsParams, WarmStart};
 
 use crate::WorldError;
 
+/// Most PGS sweeps a world accepts: far beyond convergence for any contact problem (the paper
+/// uses 15), and small enough that a step always ends — 2⁶⁴ − 1 sweeps would hang it.
+pub const MAX_ITERATIONS: usize = 100_000;
+
 /// Which solver a step calls.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Solver {
@@ -134,10 +138,10 @@ impl WorldSettings {
             "in (0, π/4) rad",
         )?;
         if let Solver::Pgs(p) = &self.solver {
-            if p.iterations == 0 {
+            if !(1..=MAX_ITERATIONS).contains(&p.iterations) {
                 return Err(WorldError::InvalidSettings {
                     field: "iterations",
-                    reason: "must be ≥ 1, got 0".into(),
+                    reason: format!("must be 1 to {MAX_ITERATIONS}, got {}", p.iterations),
                 });
             }
             check(
