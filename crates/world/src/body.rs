@@ -161,6 +161,27 @@ impl BodyDesc {
     }
 }
 
+/// A body's state after a step, computed before it is committed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Motion {
+    pub centre: Point3<f64>,
+    pub rotation: UnitQuaternion<f64>,
+    pub linear_velocity: Vector3<f64>,
+    pub angular_velocity: Vector3<f64>,
+}
+
+impl Motion {
+    /// Every component is finite.
+    pub(crate) fn is_finite(&self) -> bool {
+        self.centre
+            .iter()
+            .chain(self.rotation.coords.iter())
+            .chain(self.linear_velocity.iter())
+            .chain(self.angular_velocity.iter())
+            .all(|x| x.is_finite())
+    }
+}
+
 /// A rigid body in a world. Its state is its centre of mass, orientation and velocities.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Body {
@@ -321,19 +342,18 @@ impl Body {
             + 0.5 * w.dot(&(self.inertia_world() * w))
     }
 
-    /// Moves the body over `dt` with the solved velocities: the centre of mass along the linear
-    /// velocity, the orientation and angular velocity by the free-rotation step (see
+    /// Where the body goes over `dt` with the solved velocities: the centre of mass along the
+    /// linear velocity, the orientation and angular velocity by the free-rotation step (see
     /// [`crate::rotation`]), which keeps the angular momentum. A position `correction`'s
     /// pseudo-velocities move the centre and turn the body on top, leaving its velocities alone.
-    pub(crate) fn advance(
-        &mut self,
+    pub(crate) fn motion(
+        &self,
         solved: &SolverBody,
         correction: Option<&SolverBody>,
         dt: f64,
-    ) {
-        self.linear_velocity = solved.linear_velocity;
-        self.centre += solved.linear_velocity * dt;
-        (self.rotation, self.angular_velocity) = free_rotation(
+    ) -> Motion {
+        let mut centre = self.centre + solved.linear_velocity * dt;
+        let (mut rotation, angular_velocity) = free_rotation(
             &self.rotation,
             &solved.angular_velocity,
             &self.inertia_local,
@@ -341,11 +361,24 @@ impl Body {
             dt,
         );
         if let Some(pseudo) = correction {
-            self.centre += pseudo.linear_velocity * dt;
-            self.rotation =
-                UnitQuaternion::from_scaled_axis(pseudo.angular_velocity * dt) * self.rotation;
-            self.rotation.renormalize();
+            centre += pseudo.linear_velocity * dt;
+            rotation = UnitQuaternion::from_scaled_axis(pseudo.angular_velocity * dt) * rotation;
+            rotation.renormalize();
         }
+        Motion {
+            centre,
+            rotation,
+            linear_velocity: solved.linear_velocity,
+            angular_velocity,
+        }
+    }
+
+    /// Takes the state `motion`.
+    pub(crate) fn set_motion(&mut self, motion: &Motion) {
+        self.centre = motion.centre;
+        self.rotation = motion.rotation;
+        self.linear_velocity = motion.linear_velocity;
+        self.angular_velocity = motion.angular_velocity;
     }
 
     /// The body as the solver sees it (fixed bodies have zero inverse mass and inertia).

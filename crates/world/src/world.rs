@@ -6,8 +6,9 @@ use std::time::Instant;
 use nalgebra::Vector3;
 use tatami_contact::{Contact, ContactProjection};
 use tatami_lcp::pgs::{self, PgsParams, PgsWorkspace, Record, WarmStart};
-use tatami_lcp::{LcpError, Problem, SolverBody, direct};
+use tatami_lcp::{LcpError, Problem, direct};
 
+use crate::body::Motion;
 use crate::collision::{self, BodyGeometry, CollisionWorkspace};
 use crate::contact_set::ContactSet;
 use crate::parry_bridge::Collider;
@@ -42,6 +43,8 @@ pub struct World {
     problem: Problem<ContactProjection>,
     /// The part of each row's penetration push left to the position pass (split impulses).
     biases: Vec<f64>,
+    /// Scratch: each moving body's state after the step, checked before it is committed.
+    motions: Vec<(usize, Motion)>,
     /// The position-correction problem of the last step: `problem`'s blocks with the biases as
     /// targets, solved from rest; its bodies' velocities move positions only. Empty on steps
     /// without biases.
@@ -71,6 +74,7 @@ impl World {
             problem: Problem::default(),
             biases: Vec::new(),
             correction: Problem::default(),
+            motions: Vec::new(),
             collision_workspace: CollisionWorkspace::default(),
             pgs_workspace: PgsWorkspace::default(),
             timings: StepTimings::default(),
@@ -316,9 +320,6 @@ impl World {
                         self.contact_set.shock_order(&self.gravity),
                     );
                 }
-                if warm && result.is_ok() {
-                    self.contact_set.store(model, &self.problem);
-                }
                 result
             }
             Solver::Direct(params) => direct::solve(&mut self.problem, params).map(drop),
@@ -411,25 +412,35 @@ impl World {
     }
 
     /// Semi-implicit Euler: the solved velocities move the bodies; each turns by the
-    /// free-rotation step that keeps its angular momentum (the gyroscopic term).
+    /// free-rotation step that keeps its angular momentum (the gyroscopic term). Every new
+    /// state is computed and checked before any is committed, and the impulses are kept for the
+    /// next warm start only then, so a step that would leave a non-finite state changes neither
+    /// the bodies nor the impulses and names the body.
     /// The position correction's pseudo-velocities, when the step has one, move the positions
     /// too.
     fn integrate(&mut self, dt: f64) -> Result<(), StepError> {
         let corrections = &self.correction.bodies;
+        self.motions.clear();
         for (index, (body, solved)) in self.bodies.iter().zip(&self.problem.bodies).enumerate() {
-            let finite =
-                solved.is_finite() && corrections.get(index).is_none_or(SolverBody::is_finite);
-            if !(body.is_fixed() || finite) {
+            if body.is_fixed() {
+                continue;
+            }
+            let motion = body.motion(solved, corrections.get(index), dt);
+            if !motion.is_finite() {
                 return Err(StepError::NonFiniteState {
                     body: body.name().to_owned(),
                 });
             }
+            self.motions.push((index, motion));
         }
-        for (index, (body, solved)) in self.bodies.iter_mut().zip(&self.problem.bodies).enumerate()
+        // Every body's new state is finite: commit them all, and the solve's impulses.
+        for (index, motion) in &self.motions {
+            self.bodies[*index].set_motion(motion);
+        }
+        if let Solver::Pgs(params) = &self.settings.solver
+            && params.warm_start == WarmStart::On
         {
-            if !body.is_fixed() {
-                body.advance(solved, corrections.get(index), dt);
-            }
+            self.contact_set.store(self.settings.model, &self.problem);
         }
         Ok(())
     }

@@ -64,3 +64,36 @@ fn absurd_iteration_counts_are_refused_with_field_and_line() {
         other => panic!("accepted: {other:?}"),
     }
 }
+
+/// A step of 1e300 s took a cube to an infinite height and returned Ok, the NaN surfacing a
+/// step later naming "body 1". Now that step fails — naming the cube when it falls freely, the
+/// contact when it rests — and leaves the world as it was: the same state, time and step count,
+/// so the next sensible step runs as if it never was.
+#[test]
+fn a_step_that_would_leave_a_non_finite_state_fails_and_changes_nothing() {
+    for (height, expected) in [(100.0, "cube"), (1.0, "ground–cube")] {
+        let text = scene("", r#""friction": 0.5,"#).replace(
+            r#""position": [0, 0, 1],"#,
+            &format!(r#""position": [0, 0, {height}],"#),
+        );
+        let scene = Scene::from_json(&text).unwrap();
+        let state = |w: &tatami_world::World| -> Vec<_> {
+            w.bodies()
+                .iter()
+                .map(|b| (b.position(), b.rotation(), b.linear_velocity()))
+                .collect()
+        };
+        let mut world = scene.world().unwrap();
+        world.step(0.01).unwrap();
+        let (before, time, steps) = (state(&world), world.time(), world.steps());
+        let error = world.step(1e300).unwrap_err().to_string();
+        assert!(error.contains(expected), "{error}");
+        assert_eq!(state(&world), before);
+        assert_eq!((world.time(), world.steps()), (time, steps));
+        let mut twin = scene.world().unwrap();
+        twin.step(0.01).unwrap();
+        twin.step(0.01).unwrap();
+        world.step(0.01).unwrap();
+        assert_eq!(state(&world), state(&twin), "the failed step left a trace");
+    }
+}
