@@ -1,10 +1,15 @@
-//! A rigid-body world on Tatami's contact models (vertex, patch, face): bodies with box,
-//! sphere, cylinder and convex-hull shapes, collision with parry3d whose support polygons keep every vertex of the face-face
-//! overlap, semi-implicit Euler stepping, and scene files.
+//! A rigid-body world on Tatami's contact models (vertex, patch, face — the default): bodies
+//! with box, sphere, cylinder and convex-hull shapes, collision with parry3d whose support
+//! polygons keep every vertex of the face-face overlap, semi-implicit Euler stepping, and scene
+//! files.
 //!
-//! A step is `collision → contact rows → solver → integrate` (see [`World::step`]); the
-//! integrator turns each body by a free-rotation step that conserves its angular momentum, so
-//! tumbling bodies precess and flip as Euler's equations say. Each stage is timed ([`World::timings`]) so experiments can time the solver call alone.
+//! A step is `collision → contact rows → velocity solve → position correction → integrate`
+//! (see [`World::step`]). One persistent contact set owns every touching pair across steps —
+//! its contact, a feature id per support vertex, its impulses by feature for exact warm
+//! starting — and its order is the solver's. The integrator turns each body by a free-rotation
+//! step that conserves its angular momentum, so tumbling bodies precess and flip as Euler's
+//! equations say. Each stage is timed ([`World::timings`]) so experiments can time the solver
+//! call alone.
 
 mod body;
 mod broad_phase;
