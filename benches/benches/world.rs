@@ -11,7 +11,7 @@ use tatami_world::{ContactModel, World, WorldSettings};
 
 const DT: f64 = 0.01;
 
-/// The world under `model` with Tatami's default solver (15 PGS sweeps, no warm start), after
+/// The world under `model` with Tatami's default solver (15 PGS sweeps, warm-started), after
 /// one step so contacts exist.
 fn settled(centres: &[[f64; 3]], model: ContactModel) -> World {
     let settings = WorldSettings {
