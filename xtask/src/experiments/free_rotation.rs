@@ -167,10 +167,13 @@ pub fn run(out: &std::path::Path, progress: &Progress) -> Result<Outcome, String
     let mut invariants = Vec::new();
     let mut alignment = Vec::new();
     for (case, (dt, samples)) in cases.iter().zip(&traces) {
-        invariants.push(line(case, *dt, samples, "|L|", |s| {
+        invariants.push(line(case, *dt, samples, "|L| (%)", |s| {
             (s.momentum_ratio - 1.0) * 100.0
         }));
-        let mut energy = line(case, *dt, samples, "energy", |s| {
+        let mut turn = line(case, *dt, samples, "direction of L (°)", |s| s.momentum_turn_deg);
+        turn.stroke = Stroke::Dashed;
+        invariants.push(turn);
+        let mut energy = line(case, *dt, samples, "energy (%)", |s| {
             (s.energy_ratio - 1.0) * 100.0
         });
         energy.stroke = Stroke::Markers;
@@ -194,10 +197,10 @@ pub fn run(out: &std::path::Path, progress: &Progress) -> Result<Outcome, String
         colour: REFERENCE,
     });
     Chart {
-        title: "Free rotation: angular momentum and energy",
+        title: "Free rotation: angular momentum (size, direction) and energy",
         x: time,
         y: Axis {
-            label: "change from the start (%)",
+            label: "change from the start (% or °)",
             log: false,
         },
         series: invariants,
