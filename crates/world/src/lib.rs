@@ -16,6 +16,7 @@ mod broad_phase;
 mod builder;
 mod collision;
 mod contact_set;
+pub mod dropped;
 mod error;
 mod parry_bridge;
 mod rotation;

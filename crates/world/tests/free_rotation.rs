@@ -27,7 +27,7 @@ fn momentum(world: &World) -> Vector3<f64> {
     b.inertia_world() * b.angular_velocity()
 }
 
-/// The figures: a 1×2×3 m box at ω = (1, 2, 3) rad/s keeps |L| within 1% and the
+/// The required figures: a 1×2×3 m box at ω = (1, 2, 3) rad/s keeps |L| within 1% and the
 /// direction of L within 1° for 10 s at dt = 0.01 (without the gyroscopic term L turned 43°).
 #[test]
 fn a_tumbling_box_keeps_its_angular_momentum() {

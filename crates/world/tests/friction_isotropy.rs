@@ -66,7 +66,7 @@ fn discrete_stop(v0: f64, a: f64, dt: f64) -> f64 {
         * dt
 }
 
-/// The figures: stop within 1% of v0²/(2μg), heading within 0.5°, at slide angles 0°…90°
+/// The required figures: stop within 1% of v0²/(2μg), heading within 0.5°, at slide angles 0°…90°
 /// on floors turned by any angle. At dt = 5 ms the semi-implicit Euler stop distance is short
 /// of the closed form by v0·dt/2 = 1.25 cm (0.5%), leaving half the 1% for the solver; against
 /// the integrator's own stop distance the solver must be within 0.05% (the last step's partial

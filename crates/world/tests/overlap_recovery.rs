@@ -101,7 +101,7 @@ fn five_hundred_overlapping_cubes_separate_without_explosion() {
 /// them did), and no body is faster than a fall from the highest point any body reached, plus
 /// the 1 m/s a push may give. 500 m³ of cubes must settle into a heap 5–7 m tall (a cone at
 /// μ = 0.5's 27° slope), and cubes that slide or fall off its top reach 8 m/s under gravity;
-/// the 5 m/s bound holds for what the recovery itself gives (the test above).
+/// the 5 m/s bound holds for what the recovery itself gives (the test above).
 #[test]
 fn five_hundred_overlapping_cubes_stay_on_the_floor() {
     let mut world = overlapping_cubes(World::builder().body(wide_floor()));

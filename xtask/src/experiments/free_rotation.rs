@@ -170,7 +170,9 @@ pub fn run(out: &std::path::Path, progress: &Progress) -> Result<Outcome, String
         invariants.push(line(case, *dt, samples, "|L| (%)", |s| {
             (s.momentum_ratio - 1.0) * 100.0
         }));
-        let mut turn = line(case, *dt, samples, "direction of L (°)", |s| s.momentum_turn_deg);
+        let mut turn = line(case, *dt, samples, "direction of L (°)", |s| {
+            s.momentum_turn_deg
+        });
         turn.stroke = Stroke::Dashed;
         invariants.push(turn);
         let mut energy = line(case, *dt, samples, "energy (%)", |s| {

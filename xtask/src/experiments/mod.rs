@@ -8,6 +8,7 @@
 
 mod chart;
 mod edge_toppling;
+mod energy;
 mod free_rotation;
 mod friction_isotropy;
 mod ledge;
@@ -94,6 +95,8 @@ struct Plan {
     iterations: Vec<usize>,
     /// Launch angles (°) of the friction-isotropy slides.
     slide_angles: Vec<f64>,
+    /// Random dropped scenes of the energy run.
+    energy_scenes: u64,
 }
 
 impl Plan {
@@ -130,6 +133,7 @@ impl Plan {
             overhangs,
             iterations,
             slide_angles,
+            energy_scenes: if args.quick { 20 } else { 2000 },
         }
     }
 }
@@ -152,6 +156,7 @@ pub fn run(args: &Args) -> Result<(), String> {
         Box::new(|| pgs_error::run(&plan.iterations, out, &progress)),
         Box::new(|| friction_isotropy::run(&plan.slide_angles, out, &progress)),
         Box::new(|| free_rotation::run(out, &progress)),
+        Box::new(|| energy::run(plan.energy_scenes, out, &progress)),
     ];
     let mut outcomes = Vec::new();
     for experiment in &experiments {
