@@ -11,6 +11,7 @@ mod edge_toppling;
 mod energy;
 mod free_rotation;
 mod friction_isotropy;
+mod holding;
 mod ledge;
 mod machine;
 mod pgs_error;
@@ -156,6 +157,7 @@ pub fn run(args: &Args) -> Result<(), String> {
         Box::new(|| pgs_error::run(&plan.iterations, out, &progress)),
         Box::new(|| friction_isotropy::run(&plan.slide_angles, out, &progress)),
         Box::new(|| free_rotation::run(out, &progress)),
+        Box::new(|| holding::run(plan.quick, out, &progress)),
         Box::new(|| energy::run(plan.energy_scenes, out, &progress)),
     ];
     let mut outcomes = Vec::new();

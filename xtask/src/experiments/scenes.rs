@@ -38,6 +38,16 @@ pub const DIAGONAL_SLIDE: SceneFile = scene_file!("diagonal_slide.json");
 pub const TUMBLING_BOX: SceneFile = scene_file!("tumbling_box.json");
 /// A 0.2×1×2 m plate spun about its intermediate axis, 1% off (free rotation).
 pub const INTERMEDIATE_AXIS: SceneFile = scene_file!("intermediate_axis.json");
+/// Two unit cubes, the upper 0.2 m off centre (holding).
+pub const OFFSET_PAIR: SceneFile = scene_file!("offset_pair.json");
+/// Six unit cubes leaning 0.1 m per level (holding).
+pub const LEANING_STACK: SceneFile = scene_file!("leaning_stack.json");
+/// A 1 kg cube under a 1000 kg one (holding).
+pub const HEAVY_ON_LIGHT: SceneFile = scene_file!("heavy_on_light.json");
+/// A pyramid of 55 unit cubes, 1 mm gaps (holding).
+pub const PYRAMID_55: SceneFile = scene_file!("pyramid_55.json");
+/// 100 cubes of 2 m stepped at 60 Hz (holding).
+pub const TOWER_100_60HZ: SceneFile = scene_file!("tower_100_60hz.json");
 
 impl SceneFile {
     /// The parsed scene.
