@@ -234,6 +234,15 @@ impl Body {
                 return Err(fail(field, format!("must be finite and ≥ 0, got {mu}")));
             }
         }
+        if desc.kinetic_friction > desc.static_friction {
+            return Err(fail(
+                "kinetic_friction",
+                format!(
+                    "must not exceed static_friction ({}), got {}",
+                    desc.static_friction, desc.kinetic_friction
+                ),
+            ));
+        }
         let e = desc.restitution;
         if !(e.is_finite() && (0.0..=1.0).contains(&e)) {
             return Err(fail("restitution", format!("must be in [0, 1], got {e}")));

@@ -9,7 +9,9 @@
 //!
 //! Every number is checked while it is read, so an invalid scene is rejected with the field's
 //! path and the line it is on — unknown fields, unknown shapes, non-finite numbers, sizes, masses
-//! or `dt` that are not positive, negative friction, malformed JSON — never a panic.
+//! or `dt` that are not positive, negative friction, kinetic friction above static, `null` where
+//! a value may be given, two bodies of one name, iterations outside 1 to 100 000, malformed
+//! JSON — never a panic. A leading UTF-8 byte-order mark is skipped.
 //!
 //! ```
 //! use tatami_world::scene::Scene;
@@ -112,6 +114,8 @@ impl Scene {
 
     /// Parses and validates a scene from JSON text.
     pub fn from_json(text: &str) -> Result<Self, SceneError> {
+        // A byte-order mark some editors write is not JSON; skipping it keeps lines and columns.
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         let mut json = serde_json::Deserializer::from_str(text);
         let raw: RawScene = serde_path_to_error::deserialize(&mut json).map_err(|e| {
             let field = match e.path().to_string() {
@@ -233,21 +237,57 @@ enum ConeName {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawScene {
+    #[serde(default, deserialize_with = "present")]
     gravity: Option<[Finite; 3]>,
+    #[serde(default, deserialize_with = "present")]
     dt: Option<Positive>,
+    #[serde(default, deserialize_with = "present")]
     steps: Option<usize>,
     #[serde(default, deserialize_with = "at_least_one")]
     iterations: Option<usize>,
+    #[serde(default, deserialize_with = "present")]
     model: Option<ModelName>,
+    #[serde(default, deserialize_with = "present")]
     solver: Option<SolverName>,
+    #[serde(default, deserialize_with = "present")]
     warm_start: Option<bool>,
+    #[serde(default, deserialize_with = "present")]
     shock_propagation: Option<bool>,
+    #[serde(default, deserialize_with = "present")]
     friction_cone: Option<ConeName>,
+    #[serde(default, deserialize_with = "present")]
     bias_rate: Option<NonNegative>,
+    #[serde(default, deserialize_with = "present")]
     slop: Option<NonNegative>,
+    #[serde(default, deserialize_with = "present")]
     max_depenetration_speed: Option<Positive>,
+    #[serde(default, deserialize_with = "present")]
     max_velocity_bias: Option<NonNegative>,
+    #[serde(deserialize_with = "named_once")]
     bodies: Vec<RawBody>,
+}
+
+/// An optional field that, when given, holds a value: `null` is an error, not "absent" (a
+/// `"mass": null` once fell back to the default density without a word).
+fn present<'de, D: Deserializer<'de>, T: Deserialize<'de>>(d: D) -> Result<Option<T>, D::Error> {
+    T::deserialize(d).map(Some)
+}
+
+/// The bodies, each name used once (trajectories are keyed by name).
+fn named_once<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<RawBody>, D::Error> {
+    let bodies = Vec::<RawBody>::deserialize(d)?;
+    for (j, body) in bodies.iter().enumerate() {
+        let Some(name) = &body.0.name else { continue };
+        if let Some(i) = bodies[..j]
+            .iter()
+            .position(|b| b.0.name.as_deref() == Some(name.as_str()))
+        {
+            return Err(serde::de::Error::custom(format!(
+                "bodies[{i}] and bodies[{j}] are both named `{name}`; names must differ"
+            )));
+        }
+    }
+    Ok(bodies)
 }
 
 fn at_least_one<'de, D: Deserializer<'de>>(d: D) -> Result<Option<usize>, D::Error> {
@@ -339,20 +379,32 @@ struct RawBody(BodyDesc);
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct BodyFields {
+    #[serde(default, deserialize_with = "present")]
     name: Option<String>,
     shape: RawShape,
     #[serde(default)]
     fixed: bool,
+    #[serde(default, deserialize_with = "present")]
     mass: Option<Positive>,
+    #[serde(default, deserialize_with = "present")]
     density: Option<Positive>,
+    #[serde(default, deserialize_with = "present")]
     inertia: Option<[Positive; 3]>,
+    #[serde(default, deserialize_with = "present")]
     position: Option<[Finite; 3]>,
+    #[serde(default, deserialize_with = "present")]
     rotation: Option<RawRotation>,
+    #[serde(default, deserialize_with = "present")]
     velocity: Option<[Finite; 3]>,
+    #[serde(default, deserialize_with = "present")]
     angular_velocity: Option<[Finite; 3]>,
+    #[serde(default, deserialize_with = "present")]
     friction: Option<NonNegative>,
+    #[serde(default, deserialize_with = "present")]
     static_friction: Option<NonNegative>,
+    #[serde(default, deserialize_with = "present")]
     kinetic_friction: Option<NonNegative>,
+    #[serde(default, deserialize_with = "present")]
     restitution: Option<NonNegative>,
 }
 

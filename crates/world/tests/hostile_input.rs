@@ -97,3 +97,65 @@ fn a_step_that_would_leave_a_non_finite_state_fails_and_changes_nothing() {
         assert_eq!(state(&world), state(&twin), "the failed step left a trace");
     }
 }
+
+/// The error of a scene that must be rejected: field, line and message.
+fn rejection(text: &str) -> (String, usize, String) {
+    match Scene::from_json(text) {
+        Err(SceneError::Invalid {
+            field,
+            line,
+            message,
+            ..
+        }) => (field, line, message),
+        other => panic!("accepted: {other:?}"),
+    }
+}
+
+/// `"mass": null` silently fell back to the default density; `null` is now refused wherever a
+/// value may be given.
+#[test]
+fn null_is_not_absent() {
+    let (field, line, message) =
+        rejection(&scene("", r#""mass": null,"#).replace(r#""mass": 1.0,"#, ""));
+    assert_eq!((field.as_str(), line), ("bodies[1].mass", 5), "{message}");
+    assert!(message.contains("null"), "{message}");
+    let (field, _, _) = rejection(&scene("\"dt\": null,", ""));
+    assert_eq!(field, "dt");
+}
+
+/// Two bodies of one name made the trajectory CSV ambiguous.
+#[test]
+fn body_names_must_differ() {
+    let text = scene("", "").replace(r#""name": "cube""#, r#""name": "ground""#);
+    let (field, _, message) = rejection(&text);
+    assert_eq!(field, "bodies");
+    assert!(
+        message.contains("bodies[0] and bodies[1] are both named `ground`"),
+        "{message}"
+    );
+}
+
+/// Kinetic friction above static was accepted.
+#[test]
+fn kinetic_friction_may_not_exceed_static() {
+    let text = scene("", r#""static_friction": 0.3, "kinetic_friction": 0.6,"#);
+    let (field, line, message) = rejection(&text);
+    assert_eq!((field.as_str(), line), ("bodies[1]", 5), "{message}");
+    assert!(
+        message.contains("kinetic_friction: must not exceed static_friction (0.3)"),
+        "{message}"
+    );
+}
+
+/// A UTF-8 byte-order mark (some editors write one) got "expected value"; it is skipped, and
+/// lines are still counted from the first line.
+#[test]
+fn a_byte_order_mark_is_skipped() {
+    let text = format!("\u{feff}{}", scene("", ""));
+    assert!(Scene::from_json(&text).is_ok());
+    let bad = format!(
+        "\u{feff}{}",
+        scene("", r#""mass": -1,"#).replace(r#""mass": 1.0,"#, "")
+    );
+    assert_eq!(rejection(&bad).1, 5);
+}
