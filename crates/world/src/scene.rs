@@ -10,8 +10,9 @@
 //! Every number is checked while it is read, so an invalid scene is rejected with the field's
 //! path and the line it is on — unknown fields, unknown shapes, non-finite numbers, sizes, masses
 //! or `dt` that are not positive, negative friction, kinetic friction above static, `null` where
-//! a value may be given, two bodies of one name, iterations outside 1 to 100 000, malformed
-//! JSON — never a panic. A leading UTF-8 byte-order mark is skipped.
+//! a value may be given, two bodies of one name, iterations outside 1 to 100 000, a struct
+//! written as a positional array, malformed JSON — never a panic. A leading UTF-8 byte-order
+//! mark is skipped.
 //!
 //! ```
 //! use tatami_world::scene::Scene;
@@ -117,7 +118,7 @@ impl Scene {
         // A byte-order mark some editors write is not JSON; skipping it keeps lines and columns.
         let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         let mut json = serde_json::Deserializer::from_str(text);
-        let raw: RawScene = serde_path_to_error::deserialize(&mut json).map_err(|e| {
+        let raw: Object<RawScene> = serde_path_to_error::deserialize(&mut json).map_err(|e| {
             let field = match e.path().to_string() {
                 p if p == "." || p.is_empty() => "scene".to_owned(),
                 p => p,
@@ -140,7 +141,7 @@ impl Scene {
             column: e.column(),
             message: "trailing characters after the scene".into(),
         })?;
-        Ok(raw.into_scene())
+        Ok(raw.0.into_scene())
     }
 
     /// A world holding the scene's bodies.
@@ -153,6 +154,30 @@ impl Scene {
             .cloned()
             .fold(builder, |b, body| b.body(body))
             .build()
+    }
+}
+
+/// A struct read from a JSON object only: serde also reads a struct from an array of its fields
+/// in order, and a scene written that way is too easy to get silently wrong.
+#[derive(Debug)]
+struct Object<T>(T);
+
+impl<'de, T: Deserialize<'de>> Deserialize<'de> for Object<T> {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Fields<T>(std::marker::PhantomData<T>);
+        impl<'de, T: Deserialize<'de>> serde::de::Visitor<'de> for Fields<T> {
+            type Value = Object<T>;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a JSON object of named fields")
+            }
+            fn visit_map<M: serde::de::MapAccess<'de>>(
+                self,
+                map: M,
+            ) -> Result<Self::Value, M::Error> {
+                T::deserialize(serde::de::value::MapAccessDeserializer::new(map)).map(Object)
+            }
+        }
+        d.deserialize_map(Fields(std::marker::PhantomData))
     }
 }
 
@@ -393,7 +418,7 @@ struct BodyFields {
     #[serde(default, deserialize_with = "present")]
     position: Option<[Finite; 3]>,
     #[serde(default, deserialize_with = "present")]
-    rotation: Option<RawRotation>,
+    rotation: Option<Object<RawRotation>>,
     #[serde(default, deserialize_with = "present")]
     velocity: Option<[Finite; 3]>,
     #[serde(default, deserialize_with = "present")]
@@ -410,7 +435,7 @@ struct BodyFields {
 
 impl<'de> Deserialize<'de> for RawBody {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        let fields = BodyFields::deserialize(d)?;
+        let Object(fields) = Object::<BodyFields>::deserialize(d)?;
         fields
             .into_desc()
             .map(Self)
@@ -458,7 +483,7 @@ impl BodyFields {
         if let Some(p) = self.position {
             desc.position = vector(p).into();
         }
-        if let Some(r) = self.rotation {
+        if let Some(Object(r)) = self.rotation {
             // Scaled by its largest component first: the norm of [1e200, 1e200, 0] overflows.
             let axis = vector(r.axis);
             let axis = Unit::try_new(axis / axis.amax().max(f64::MIN_POSITIVE), 0.0)

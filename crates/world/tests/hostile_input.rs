@@ -159,3 +159,17 @@ fn a_byte_order_mark_is_skipped() {
     );
     assert_eq!(rejection(&bad).1, 5);
 }
+
+/// A scene, a body or a rotation written as a positional array of its fields was accepted.
+#[test]
+fn structs_are_objects_not_positional_arrays() {
+    let (field, line, message) = rejection("[[0, 0, -9.8], 0.01]");
+    assert_eq!((field.as_str(), line), ("scene", 1));
+    assert!(
+        message.contains("a JSON object of named fields"),
+        "{message}"
+    );
+    let rotation = r#""rotation": [[0, 0, 1], 30],"#;
+    let (field, line, _) = rejection(&scene("", rotation));
+    assert_eq!((field.as_str(), line), ("bodies[1].rotation", 5));
+}
