@@ -92,8 +92,8 @@ fn apply_overrides(scene: &mut Scene, args: &Args) -> Result<(), String> {
         return Err("--every must be ≥ 1".into());
     }
     if let Some(dt) = args.dt {
-        if !(dt.is_finite() && dt > 0.0) {
-            return Err(format!("--dt must be finite and > 0, got {dt}"));
+        if !(dt.is_finite() && dt > 0.0 && dt <= tatami_world::MAX_TIME_STEP) {
+            return Err(format!("--dt must be > 0 and at most 1 s, got {dt}"));
         }
         scene.dt = dt;
     }

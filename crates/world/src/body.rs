@@ -9,6 +9,19 @@ use crate::{Shape, WorldError};
 /// Density used when a dynamic body gives neither mass nor density: water, 1000 kg/m³.
 pub const DEFAULT_DENSITY: f64 = 1000.0;
 
+/// How far from the origin a body may be placed (m): the reach of [`crate::LENGTHS`], within
+/// which contact geometry keeps its precision.
+pub const POSITION_LIMIT: f64 = 1e5;
+
+/// Fastest a body may be given (m/s, and rad/s for spin): far beyond anything a 0.01 s step
+/// resolves (10 km/s moves a body 100 m a step), and small enough that impulses stay finite.
+pub const SPEED_LIMIT: f64 = 1e4;
+
+/// Masses a dynamic body may have (kg): with the solver's 15 sweeps a mass ratio beyond about
+/// 1000 already strains it; these only keep its arithmetic finite (fixed bodies' masses are
+/// nominal and not checked).
+pub const MASSES: std::ops::RangeInclusive<f64> = 1e-6..=1e12;
+
 /// Friction coefficient when a body gives none.
 pub const DEFAULT_FRICTION: f64 = 0.5;
 
@@ -226,6 +239,23 @@ impl Body {
                 return Err(fail(field, format!("must be finite, got {values:?}")));
             }
         }
+        if desc.position.coords.norm() > POSITION_LIMIT {
+            return Err(fail(
+                "position",
+                format!("must be within {POSITION_LIMIT:e} m of the origin"),
+            ));
+        }
+        for (field, v) in [
+            ("velocity", desc.velocity),
+            ("angular_velocity", desc.angular_velocity),
+        ] {
+            if v.norm() > SPEED_LIMIT {
+                return Err(fail(
+                    field,
+                    format!("must be at most {SPEED_LIMIT:e} in size"),
+                ));
+            }
+        }
         for (field, mu) in [
             ("static_friction", desc.static_friction),
             ("kinetic_friction", desc.kinetic_friction),
@@ -253,6 +283,16 @@ impl Body {
         };
         if !(value.is_finite() && value > 0.0) {
             return Err(fail(field, format!("must be finite and > 0, got {value}")));
+        }
+        if !desc.fixed && !MASSES.contains(&mass) {
+            return Err(fail(
+                field,
+                format!(
+                    "gives a mass of {mass:e} kg; a dynamic body's must be from {:e} to {:e} kg",
+                    MASSES.start(),
+                    MASSES.end()
+                ),
+            ));
         }
         let inertia_local = match desc.inertia {
             None => props.unit_inertia * mass,

@@ -8,6 +8,10 @@ use crate::{BodyDesc, World, WorldError, WorldSettings};
 /// Standard gravity used by default (m/s², along −z), as in the paper.
 pub const DEFAULT_GRAVITY: f64 = 9.8;
 
+/// Strongest gravity a world takes (m/s²), a thousand g: beyond it one step's impulses leave
+/// the range the bounds on speeds and masses keep finite (gravity of 1e308 gave NaN states).
+pub const GRAVITY_LIMIT: f64 = 1e4;
+
 /// Collects gravity, settings and bodies; [`WorldBuilder::build`] validates them all.
 #[derive(Debug, Clone)]
 pub struct WorldBuilder {
@@ -53,10 +57,13 @@ impl WorldBuilder {
 
     /// The world, or the first invalid setting or body.
     pub fn build(self) -> Result<World, WorldError> {
-        if !self.gravity.iter().all(|g| g.is_finite()) {
+        if !(self.gravity.iter().all(|g| g.is_finite()) && self.gravity.norm() <= GRAVITY_LIMIT) {
             return Err(WorldError::InvalidSettings {
                 field: "gravity",
-                reason: format!("must be finite, got {:?}", self.gravity.as_slice()),
+                reason: format!(
+                    "must be finite and at most {GRAVITY_LIMIT:e} m/s² in size, got {:?}",
+                    self.gravity.as_slice()
+                ),
             });
         }
         self.settings.validate()?;

@@ -36,8 +36,8 @@ pub enum WorldError {
 /// Why a step failed. The world is left as it was before the step's integration.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum StepError {
-    /// `dt` was zero, negative or not finite.
-    #[error("time step must be finite and > 0, got {0}")]
+    /// `dt` was zero, negative, not finite or longer than `MAX_TIME_STEP`.
+    #[error("time step must be > 0 and at most 1 s, got {0}")]
     InvalidTimeStep(f64),
     /// A contact could not be turned into rows.
     #[error("contact {pair}: {source}")]

@@ -27,13 +27,16 @@ mod support;
 mod timings;
 mod world;
 
-pub use body::{Body, BodyDesc, DEFAULT_DENSITY, DEFAULT_FRICTION, MassSpec};
-pub use builder::{DEFAULT_GRAVITY, WorldBuilder};
+pub use body::{
+    Body, BodyDesc, DEFAULT_DENSITY, DEFAULT_FRICTION, MASSES, MassSpec, POSITION_LIMIT,
+    SPEED_LIMIT,
+};
+pub use builder::{DEFAULT_GRAVITY, GRAVITY_LIMIT, WorldBuilder};
 pub use error::{StepError, WorldError};
 pub use settings::{MAX_ITERATIONS, Solver, WorldSettings};
-pub use shape::{MassProperties, Shape};
+pub use shape::{LENGTHS, MassProperties, Shape};
 pub use tatami_contact::{ContactModel, ContactSettings, FrictionCone};
 pub use tatami_lcp::direct::DirectParams;
 pub use tatami_lcp::pgs::{PgsParams, WarmStart};
 pub use timings::StepTimings;
-pub use world::World;
+pub use world::{MAX_TIME_STEP, World};

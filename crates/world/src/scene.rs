@@ -14,6 +14,13 @@
 //! written as a positional array, malformed JSON — never a panic. A leading UTF-8 byte-order
 //! mark is skipped.
 //!
+//! Bounds, which keep contact geometry and the solver's arithmetic within f64: lengths from
+//! 0.1 mm to 100 km ([`crate::LENGTHS`]), positions within 100 km of the origin
+//! ([`crate::POSITION_LIMIT`]), speeds up to 10 km/s and spins up to 10⁴ rad/s
+//! ([`crate::SPEED_LIMIT`]), dynamic masses from 1 mg to 10¹² kg ([`crate::MASSES`]), gravity up
+//! to 10⁴ m/s² ([`crate::GRAVITY_LIMIT`]), `dt` up to 1 s ([`crate::MAX_TIME_STEP`]), 1 to 100 000
+//! iterations ([`crate::MAX_ITERATIONS`]).
+//!
 //! ```
 //! use tatami_world::scene::Scene;
 //! let scene = Scene::from_json(r#"{
@@ -264,8 +271,8 @@ enum ConeName {
 struct RawScene {
     #[serde(default, deserialize_with = "present")]
     gravity: Option<[Finite; 3]>,
-    #[serde(default, deserialize_with = "present")]
-    dt: Option<Positive>,
+    #[serde(default, deserialize_with = "time_step")]
+    dt: Option<f64>,
     #[serde(default, deserialize_with = "present")]
     steps: Option<usize>,
     #[serde(default, deserialize_with = "at_least_one")]
@@ -290,6 +297,16 @@ struct RawScene {
     max_velocity_bias: Option<NonNegative>,
     #[serde(deserialize_with = "named_once")]
     bodies: Vec<RawBody>,
+}
+
+/// A time step: finite, > 0 and at most [`crate::MAX_TIME_STEP`].
+fn time_step<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f64>, D::Error> {
+    checked(
+        d,
+        |dt| dt > 0.0 && dt <= crate::MAX_TIME_STEP,
+        "> 0 and at most 1 s",
+    )
+    .map(Some)
 }
 
 /// An optional field that, when given, holds a value: `null` is an error, not "absent" (a
@@ -373,7 +390,7 @@ impl RawScene {
                 0.0,
                 -crate::DEFAULT_GRAVITY,
             )),
-            dt: self.dt.map_or(DEFAULT_DT, |dt| dt.0),
+            dt: self.dt.unwrap_or(DEFAULT_DT),
             steps: self.steps.unwrap_or(DEFAULT_STEPS),
             settings,
             bodies: self.bodies.into_iter().map(|b| b.0).collect(),

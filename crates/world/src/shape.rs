@@ -3,6 +3,12 @@
 use nalgebra::{Matrix3, Point3, Vector3};
 
 use crate::WorldError;
+
+/// Lengths a shape may have (m): sizes, radii, heights, hull coordinates. Contact geometry
+/// resolves about 1e-9 of a contact's size and keeps depths to the micrometre up to 100 km (a
+/// cube fell through a 1e10 m ground, and parry's EPA indexed out of bounds at 1e155 m); below
+/// 0.1 mm a body is under the 2 mm slop and the 5 mm contact margin by orders of magnitude.
+pub const LENGTHS: std::ops::RangeInclusive<f64> = 1e-4..=1e5;
 use crate::parry_bridge;
 
 /// The shape of a body, in its body frame (centred on the body's origin).
@@ -69,15 +75,20 @@ impl Shape {
         Self::Convex { points }
     }
 
-    /// Mass properties of the solid shape, or why the shape is invalid (a size not finite and
-    /// positive, a hull without volume).
+    /// Mass properties of the solid shape, or why the shape is invalid (a length outside
+    /// [`LENGTHS`], a hull without volume).
     pub fn mass_properties(&self) -> Result<MassProperties, WorldError> {
         let invalid = |what: &str, value: f64| WorldError::InvalidShape {
-            reason: format!("{what} must be finite and > 0, got {value}"),
+            reason: format!(
+                "{what} must be from {:e} to {:e} m, got {value}",
+                LENGTHS.start(),
+                LENGTHS.end()
+            ),
         };
+        let length = |h: f64| LENGTHS.contains(&(2.0 * h));
         match self {
             Self::Box { half_extents: h } => {
-                if let Some(&bad) = h.iter().find(|h| !(h.is_finite() && **h > 0.0)) {
+                if let Some(&bad) = h.iter().find(|h| !length(**h)) {
                     return Err(invalid("box size", 2.0 * bad));
                 }
                 let (x2, y2, z2) = (h.x * h.x, h.y * h.y, h.z * h.z);
@@ -89,7 +100,7 @@ impl Shape {
                 })
             }
             Self::Sphere { radius: r } => {
-                if !(r.is_finite() && *r > 0.0) {
+                if !LENGTHS.contains(r) {
                     return Err(invalid("sphere radius", *r));
                 }
                 Ok(MassProperties {
@@ -102,10 +113,10 @@ impl Shape {
                 radius: r,
                 half_height: h,
             } => {
-                if !(r.is_finite() && *r > 0.0) {
+                if !LENGTHS.contains(r) {
                     return Err(invalid("cylinder radius", *r));
                 }
-                if !(h.is_finite() && *h > 0.0) {
+                if !length(*h) {
                     return Err(invalid("cylinder height", 2.0 * h));
                 }
                 let axial = 0.5 * r * r;
@@ -119,9 +130,17 @@ impl Shape {
                 })
             }
             Self::Convex { points } => {
-                if let Some(p) = points.iter().find(|p| !p.iter().all(|x| x.is_finite())) {
+                let within = |x: &f64| x.abs() <= *LENGTHS.end();
+                if let Some(p) = points.iter().find(|p| !p.iter().all(within)) {
                     return Err(WorldError::InvalidShape {
-                        reason: format!("convex point ({}, {}, {}) is not finite", p.x, p.y, p.z),
+                        reason: format!(
+                            "convex point ({}, {}, {}) must be finite and within {:e} m of the \
+                             body's origin",
+                            p.x,
+                            p.y,
+                            p.z,
+                            LENGTHS.end()
+                        ),
                     });
                 }
                 parry_bridge::convex_mass_properties(points).ok_or_else(|| {
