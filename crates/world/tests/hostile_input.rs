@@ -192,3 +192,38 @@ fn out_of_range_quantities_are_refused_at_load() {
     let mut world = Scene::from_json(&scene("", "")).unwrap().world().unwrap();
     assert!(world.step(1e10).is_err());
 }
+
+/// At the edge of the bounds the contact geometry still holds: a cube and a standing cylinder
+/// on a 100 km ground (the largest length allowed), placed 45 km from the origin, rest without
+/// sinking or gaining energy (on a 3e7 m ground a cylinder gained 10⁴–10⁷× its energy, and a
+/// cube fell through a 1e10 m one).
+#[test]
+fn bodies_rest_on_the_largest_ground_allowed() {
+    let text = r#"{ "bodies": [
+  { "name": "ground", "shape": { "box": { "size": [100000, 100000, 2] } }, "fixed": true,
+    "position": [0, 0, -1] },
+  { "name": "cube", "shape": { "box": { "size": [1, 1, 1] } }, "mass": 1.0,
+    "position": [45000, 0, 0.5] },
+  { "name": "cylinder", "shape": { "cylinder": { "radius": 0.5, "height": 1 } }, "mass": 1.0,
+    "position": [-30000, 35000, 0.5] } ] }"#;
+    let scene = Scene::from_json(text).unwrap();
+    let mut world = scene.world().unwrap();
+    let start = world.total_energy();
+    for _ in 0..300 {
+        world.step(scene.dt).unwrap();
+        assert!(
+            world.total_energy() <= start + 1e-6 * start.abs(),
+            "energy grew"
+        );
+    }
+    for name in ["cube", "cylinder"] {
+        let body = world.body(name).unwrap();
+        // Resting within the 2 mm slop of where it was placed, not moving.
+        assert!(
+            (body.position().z - 0.5).abs() < 2e-3,
+            "{name} at {}",
+            body.position()
+        );
+        assert!(body.linear_velocity().norm() < 1e-3, "{name} moves");
+    }
+}
