@@ -1,6 +1,9 @@
 //! Hostile input found by fuzzing scenes and misusing the API: each case once panicked, hung
 //! or gave a silent NaN, and now runs correctly or is refused naming the field and the line.
 
+mod common;
+
+use common::rejection;
 use tatami_world::scene::{Scene, SceneError};
 
 /// A floor and one 2 m cube, with `cube` spliced into the cube's object and `top` into the
@@ -61,19 +64,6 @@ fn absurd_iteration_counts_are_refused_with_field_and_line() {
             assert_eq!((field.as_str(), line), ("iterations", 1));
             assert!(message.contains("must be 1 to 100000"), "{message}");
         }
-        other => panic!("accepted: {other:?}"),
-    }
-}
-
-/// The error of a scene that must be rejected: field, line and message.
-fn rejection(text: &str) -> (String, usize, String) {
-    match Scene::from_json(text) {
-        Err(SceneError::Invalid {
-            field,
-            line,
-            message,
-            ..
-        }) => (field, line, message),
         other => panic!("accepted: {other:?}"),
     }
 }

@@ -3,6 +3,9 @@
 
 use std::path::Path;
 
+mod common;
+
+use common::rejection;
 use tatami_world::scene::{Scene, SceneError};
 
 /// A valid scene with one dynamic cube, laid out one field per line so errors have known lines.
@@ -28,19 +31,6 @@ fn scene_with(line: usize, replacement: &str) -> String {
         lines[line - 1] = replacement.to_owned();
     }
     lines.join("\n")
-}
-
-/// The error for `text`, which must be rejected.
-fn rejection(text: &str) -> (String, usize, String) {
-    match Scene::from_json(text) {
-        Err(SceneError::Invalid {
-            field,
-            line,
-            message,
-            ..
-        }) => (field, line, message),
-        other => panic!("expected an invalid-scene error, got {other:?}"),
-    }
 }
 
 #[test]

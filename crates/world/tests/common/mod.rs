@@ -1,8 +1,10 @@
-//! Scenes shared by the world's tests: a large fixed floor and 2 m cubes.
+//! Scenes shared by the world's tests: a large fixed floor and 2 m cubes; how a scene file is
+//! refused.
 
 #![allow(dead_code)] // each test binary uses a subset
 
 use nalgebra::{UnitQuaternion, Vector3};
+use tatami_world::scene::{Scene, SceneError};
 use tatami_world::{BodyDesc, Shape, World, WorldBuilder};
 
 /// Edge of the paper's cubes (m).
@@ -50,5 +52,18 @@ pub fn run(world: &mut World, seconds: f64, mut each: impl FnMut(&World)) {
     for _ in 0..steps {
         world.step(DT).unwrap();
         each(world);
+    }
+}
+
+/// The field, line and message of the error for `text`, which must be refused.
+pub fn rejection(text: &str) -> (String, usize, String) {
+    match Scene::from_json(text) {
+        Err(SceneError::Invalid {
+            field,
+            line,
+            message,
+            ..
+        }) => (field, line, message),
+        other => panic!("expected an invalid-scene error, got {other:?}"),
     }
 }
