@@ -301,7 +301,7 @@ pub fn shock_propagation<P: Projection>(
     workspace: &mut PgsWorkspace,
     order: &[(usize, Support)],
 ) -> Result<(), LcpError> {
-    problem.validate()?;
+    problem.validate_bounds()?;
     let widest = problem
         .blocks
         .iter()

@@ -108,3 +108,17 @@ fn an_order_past_the_last_block_is_an_error() {
         "{error:?}"
     );
 }
+
+/// A friction bound scaled by a row outside its block indexed out of bounds in the pass; it is
+/// an error naming the block, as in `solve_in_place`.
+#[test]
+fn a_bound_outside_its_block_is_an_error() {
+    let mut problem = falling_stack(2);
+    problem.blocks[0].projection = BoundsProjection(vec![RowBound::Friction {
+        normal: 3,
+        coefficient: 0.5,
+    }]);
+    let error = pgs::shock_propagation(&mut problem, &mut PgsWorkspace::default(), &bottom_up(2))
+        .unwrap_err();
+    assert_eq!(error, LcpError::MalformedBlock { block: 0 });
+}
