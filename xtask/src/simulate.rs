@@ -5,7 +5,7 @@ use std::io::{BufWriter, Write};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
-use tatami_world::scene::Scene;
+use tatami_world::scene::{MAX_STEPS, Scene};
 use tatami_world::{ContactModel, DirectParams, Solver};
 
 use crate::trajectory::TrajectoryWriter;
@@ -98,6 +98,9 @@ fn apply_overrides(scene: &mut Scene, args: &Args) -> Result<(), String> {
         scene.dt = dt;
     }
     if let Some(steps) = args.steps {
+        if !(1..=MAX_STEPS).contains(&steps) {
+            return Err(format!("--steps must be 1 to {MAX_STEPS}, got {steps}"));
+        }
         scene.steps = steps;
     }
     if let Some(model) = args.model {

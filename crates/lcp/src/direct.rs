@@ -30,18 +30,37 @@ pub struct DirectParams {
     /// Lemke pivots allowed per variable of the standard LCP. Default
     /// [`DEFAULT_PIVOTS_PER_VARIABLE`].
     pub pivots_per_variable: usize,
+    /// Largest dense storage (bytes) a solve may allocate; a larger problem is refused with
+    /// [`LcpError::TooLarge`] before anything is allocated. Default [`DEFAULT_MEMORY_BUDGET`].
+    pub memory_budget: usize,
 }
 
 /// Lemke rarely needs more than a few pivots per variable on contact problems; 50 leaves a wide
 /// margin before [`LcpError::PivotLimit`].
 pub const DEFAULT_PIVOTS_PER_VARIABLE: usize = 50;
 
+/// 512 MiB: the dense matrices of about 4,600 standard-LCP variables, some 650 contact points
+/// with box friction (7 variables each), or about 160 resting cubes of the vertex model.
+pub const DEFAULT_MEMORY_BUDGET: usize = 512 << 20;
+
 impl Default for DirectParams {
     fn default() -> Self {
         Self {
             pivots_per_variable: DEFAULT_PIVOTS_PER_VARIABLE,
+            memory_budget: DEFAULT_MEMORY_BUDGET,
         }
     }
+}
+
+/// Bytes of dense storage a direct solve of `rows` contact rows and `variables` standard-LCP
+/// variables allocates: `A` (rows²), the standard matrix (variables²) and Lemke's tableau
+/// (variables × (2·variables + 2)), in f64. Saturates instead of overflowing.
+pub fn dense_bytes(rows: usize, variables: usize) -> usize {
+    let cells = rows
+        .saturating_mul(rows)
+        .saturating_add(variables.saturating_mul(variables))
+        .saturating_add(variables.saturating_mul(variables.saturating_mul(2).saturating_add(2)));
+    cells.saturating_mul(std::mem::size_of::<f64>())
 }
 
 /// What a direct solve did.
@@ -66,6 +85,15 @@ pub fn solve<P: Projection>(
     params: &DirectParams,
 ) -> Result<DirectInfo, LcpError> {
     problem.validate()?;
+    let variables = StandardForm::variables(problem)?;
+    let bytes = dense_bytes(problem.rows.len(), variables);
+    if bytes > params.memory_budget {
+        return Err(LcpError::TooLarge {
+            variables,
+            bytes,
+            budget: params.memory_budget,
+        });
+    }
     let (a, b) = dense::assemble(problem);
     let lcp = StandardForm::new(problem, &a, &b)?;
     let (x, pivots) = lemke::solve(
@@ -129,6 +157,29 @@ impl Builder {
 }
 
 impl StandardForm {
+    /// Variables of the standard form of `problem`, counted without building it.
+    fn variables<P: Projection>(problem: &Problem<P>) -> Result<usize, LcpError> {
+        let mut count = 0usize;
+        for (index, block) in problem.blocks.iter().enumerate() {
+            for k in 0..block.rows.len() {
+                let bound = block
+                    .projection
+                    .bound(k)
+                    .ok_or(LcpError::Unsupported { block: index })?;
+                count += match bound {
+                    RowBound::NonNegative => 1,
+                    // β⁺, β⁻ and the sliding speed γ.
+                    RowBound::Friction { .. } => 3,
+                    RowBound::Box { lo, hi } => match (lo.is_finite(), hi.is_finite()) {
+                        (true, false) | (false, true) => 1,
+                        _ => 2,
+                    },
+                };
+            }
+        }
+        Ok(count)
+    }
+
     fn new<P: Projection>(
         problem: &Problem<P>,
         a: &DMatrix<f64>,

@@ -60,6 +60,19 @@ pub enum LcpError {
         /// Index of the block.
         block: usize,
     },
+    /// The direct solver's dense matrices would exceed its memory budget.
+    #[error(
+        "the direct problem has {variables} unknowns and needs {bytes} bytes of dense storage, \
+         over the budget of {budget} bytes; use the PGS solver for a problem this size"
+    )]
+    TooLarge {
+        /// Variables of the standard LCP.
+        variables: usize,
+        /// Bytes the dense matrices would take.
+        bytes: usize,
+        /// The budget ([`DirectParams::memory_budget`](crate::direct::DirectParams)).
+        budget: usize,
+    },
     /// The direct solver met a block whose constraint set is not a product of row bounds.
     #[error(
         "block {block} cannot be written as row bounds; the direct solver needs its bounds form"

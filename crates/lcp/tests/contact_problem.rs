@@ -352,3 +352,31 @@ proptest! {
         }
     }
 }
+
+/// The cube's 12 rows become 28 standard variables (1 + 3 + 3 per corner); a budget one byte
+/// short of their dense storage refuses the solve before allocating, naming the unknowns, and the
+/// exact budget solves it.
+#[test]
+fn a_direct_problem_over_the_memory_budget_is_refused() {
+    let bytes = 8 * (12 * 12 + 28 * 28 + 28 * (2 * 28 + 2));
+    assert_eq!(direct::dense_bytes(12, 28), bytes);
+    let mut problem = cube_on_ground(Vector3::new(0.0, 0.0, -G * DT), 0.5);
+    let tight = direct::DirectParams {
+        memory_budget: bytes - 1,
+        ..Default::default()
+    };
+    assert_eq!(
+        direct::solve(&mut problem, &tight).unwrap_err(),
+        LcpError::TooLarge {
+            variables: 28,
+            bytes,
+            budget: bytes - 1
+        }
+    );
+    let exact = direct::DirectParams {
+        memory_budget: bytes,
+        ..Default::default()
+    };
+    direct::solve(&mut problem, &exact).unwrap();
+    assert!(direct::dense_bytes(usize::MAX, usize::MAX) == usize::MAX);
+}

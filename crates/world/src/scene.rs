@@ -19,7 +19,10 @@
 //! ([`crate::POSITION_LIMIT`]), speeds up to 10 km/s and spins up to 10⁴ rad/s
 //! ([`crate::SPEED_LIMIT`]), dynamic masses from 1 mg to 10¹² kg ([`crate::MASSES`]), gravity up
 //! to 10⁴ m/s² ([`crate::GRAVITY_LIMIT`]), `dt` up to 1 s ([`crate::MAX_TIME_STEP`]), 1 to 100 000
-//! iterations ([`crate::MAX_ITERATIONS`]).
+//! iterations ([`crate::MAX_ITERATIONS`]), 1 to 10⁷ steps ([`MAX_STEPS`]), `bias_rate` in
+//! [0, 1]. Convex hulls need a volume (non-coplanar points); a twist-radius grid spacing must be
+//! positive. With the direct solver, a problem whose dense matrices exceed
+//! [`tatami_lcp::direct::DEFAULT_MEMORY_BUDGET`] (512 MiB) is refused at the step that builds it.
 //!
 //! ```
 //! use tatami_world::scene::Scene;
@@ -48,6 +51,10 @@ use crate::{BodyDesc, MassSpec, Shape, Solver, World, WorldError, WorldSettings}
 
 /// Steps a scene runs when it does not say.
 pub const DEFAULT_STEPS: usize = 1000;
+
+/// Most steps a scene may ask for: 10⁷, 28 hours of simulated time at 100 Hz. A count beyond
+/// it is a typo, and would keep the command line busy for years.
+pub const MAX_STEPS: usize = 10_000_000;
 
 /// Time step when a scene does not say (s).
 pub const DEFAULT_DT: f64 = 0.01;
@@ -269,11 +276,11 @@ enum ConeName {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawScene {
-    #[serde(default, deserialize_with = "present")]
-    gravity: Option<[Finite; 3]>,
+    #[serde(default, deserialize_with = "gravity")]
+    gravity: Option<Vector3<f64>>,
     #[serde(default, deserialize_with = "time_step")]
     dt: Option<f64>,
-    #[serde(default, deserialize_with = "present")]
+    #[serde(default, deserialize_with = "step_count")]
     steps: Option<usize>,
     #[serde(default, deserialize_with = "at_least_one")]
     iterations: Option<usize>,
@@ -287,8 +294,8 @@ struct RawScene {
     shock_propagation: Option<bool>,
     #[serde(default, deserialize_with = "present")]
     friction_cone: Option<ConeName>,
-    #[serde(default, deserialize_with = "present")]
-    bias_rate: Option<NonNegative>,
+    #[serde(default, deserialize_with = "fraction")]
+    bias_rate: Option<f64>,
     #[serde(default, deserialize_with = "present")]
     slop: Option<NonNegative>,
     #[serde(default, deserialize_with = "present")]
@@ -307,6 +314,37 @@ fn time_step<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f64>, D::Error> {
         "> 0 and at most 1 s",
     )
     .map(Some)
+}
+
+/// Gravity: finite, at most [`crate::GRAVITY_LIMIT`] in size.
+fn gravity<'de, D: Deserializer<'de>>(d: D) -> Result<Option<Vector3<f64>>, D::Error> {
+    let g = vector(<[Finite; 3]>::deserialize(d)?);
+    if g.norm() <= crate::GRAVITY_LIMIT {
+        Ok(Some(g))
+    } else {
+        Err(serde::de::Error::custom(format!(
+            "must be at most {:e} m/s² in size, got {:e}",
+            crate::GRAVITY_LIMIT,
+            g.norm()
+        )))
+    }
+}
+
+/// A fraction in [0, 1].
+fn fraction<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f64>, D::Error> {
+    checked(d, |x| (0.0..=1.0).contains(&x), "in [0, 1]").map(Some)
+}
+
+/// A step count: 1 to [`MAX_STEPS`].
+fn step_count<'de, D: Deserializer<'de>>(d: D) -> Result<Option<usize>, D::Error> {
+    let n = usize::deserialize(d)?;
+    if (1..=MAX_STEPS).contains(&n) {
+        Ok(Some(n))
+    } else {
+        Err(serde::de::Error::custom(format!(
+            "must be 1 to {MAX_STEPS}, got {n}"
+        )))
+    }
 }
 
 /// An optional field that, when given, holds a value: `null` is an error, not "absent" (a
@@ -372,7 +410,7 @@ impl RawScene {
             };
         }
         if let Some(rate) = self.bias_rate {
-            settings.contact.bias_rate = rate.0;
+            settings.contact.bias_rate = rate;
         }
         if let Some(slop) = self.slop {
             settings.contact.slop = slop.0;
@@ -385,7 +423,7 @@ impl RawScene {
         }
         settings.shock_propagation = self.shock_propagation == Some(true);
         Scene {
-            gravity: self.gravity.map(vector).unwrap_or(Vector3::new(
+            gravity: self.gravity.unwrap_or(Vector3::new(
                 0.0,
                 0.0,
                 -crate::DEFAULT_GRAVITY,

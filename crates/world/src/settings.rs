@@ -1,6 +1,6 @@
 //! World settings: contact model, solver, contact tuning, collision tolerances.
 
-use tatami_contact::{ContactModel, ContactSettings, FrictionCone};
+use tatami_contact::{ContactModel, ContactSettings, FrictionCone, TwistRadius};
 use tatami_lcp::direct::DirectParams;
 use tatami_lcp::pgs::{PgsParams, WarmStart};
 
@@ -137,6 +137,9 @@ impl WorldSettings {
             angle > 0.0 && angle < std::f64::consts::FRAC_PI_4,
             "in (0, π/4) rad",
         )?;
+        if let TwistRadius::Grid { spacing } = c.twist_radius {
+            check("twist_radius.spacing", spacing, spacing > 0.0, "> 0 m")?;
+        }
         if let Solver::Pgs(p) = &self.solver {
             if !(1..=MAX_ITERATIONS).contains(&p.iterations) {
                 return Err(WorldError::InvalidSettings {
