@@ -92,7 +92,16 @@ impl ConvexPolygon {
                         fan_triangle_distance_integral(c, &self.vertex(i), &self.vertex(i + 1))
                     })
                     .sum();
-                integral / self.area()
+                // The mean lies between the distance to the centroid (Jensen: |x − c| is
+                // convex) and the farthest vertex; rounding for a `c` far from a small polygon
+                // may leave the sum a few ulps of |c|³ outside.
+                let nearest = (self.centroid() - c).norm();
+                let farthest = self
+                    .vertices()
+                    .iter()
+                    .map(|v| (v - c).norm())
+                    .fold(0.0, f64::max);
+                (integral / self.area()).max(nearest).min(farthest)
             }
         }
     }
@@ -177,12 +186,27 @@ fn fan_triangle_distance_integral(c: &Point2<f64>, a: &Point2<f64>, b: &Point2<f
         return 0.0;
     }
     let (s1, s2) = ((a - c).dot(&t), (b - c).dot(&t));
-    // asinh(s/d) = sign(s) ln((|s| + r)/d) with r = √(s² + d²), which the first term needs too.
-    let primitive = |s: f64| {
-        let r = (s * s + d * d).sqrt();
-        d * s * r + d.powi(3) * ((s.abs() + r) / d).ln().copysign(s)
+    let (r1, r2) = (s1.hypot(d), s2.hypot(d));
+    // The primitive is P(s) = d s r + d³ asinh(s/d), r = √(s² + d²); the integral is
+    // (P(s₂) − P(s₁))/6. For a far `c`, P(s₁) and P(s₂) are both of size |c|³ while their
+    // difference is |c|²·len, so the differences are rewritten without subtracting: with
+    // s₂ − s₁ = len and s₁, s₂ of one sign,
+    //   s₂r₂ − s₁r₁ = len (s₁ + s₂)(s₁² + s₂² + d²) / (s₂r₂ + s₁r₁),
+    //   asinh(s₂/d) − asinh(s₁/d) = asinh(len (s₁ + s₂) / (s₂r₁ + s₁r₂)).
+    let (product, asinh) = if s1 * s2 > 0.0 {
+        let sum = s1 + s2;
+        (
+            len * sum * (s1 * s1 + s2 * s2 + d * d) / (s2 * r2 + s1 * r1),
+            (len * sum / (s2 * r1 + s1 * r2)).asinh(),
+        )
+    } else {
+        (s2 * r2 - s1 * r1, (s2 / d).asinh() - (s1 / d).asinh())
     };
-    signed_d.signum() * (primitive(s2) - primitive(s1)) / 6.0
+    // d³ asinh(…) → 0 as d → 0; below d ≈ 1e-108, d³ is 0 while s/d may overflow to ∞, and
+    // 0·∞ would be NaN.
+    let cube = d.powi(3);
+    let log_term = if cube == 0.0 { 0.0 } else { cube * asinh };
+    signed_d.signum() * (d * product + log_term) / 6.0
 }
 
 /// Mean of `|x − c|` over the segment `a b`: `(1/L) ∫ √(d² + s²) ds`.
@@ -194,7 +218,9 @@ fn segment_mean_distance(a: &Point2<f64>, b: &Point2<f64>, c: &Point2<f64>) -> f
     let (s1, s2) = ((a - c).dot(&t), (b - c).dot(&t));
     let primitive = |s: f64| {
         let r = s.hypot(d);
-        if d == 0.0 {
+        // d² asinh(s/d) → 0 as d → 0; below d ≈ 1e-162, d² is 0 while s/d may overflow to ∞,
+        // and 0·∞ would be NaN.
+        if d * d == 0.0 {
             s * r
         } else {
             s * r + d * d * (s / d).asinh()

@@ -43,4 +43,4 @@ pub mod polygon;
 pub use area::signed_area;
 pub use error::GeometryError;
 pub use locate::{Location, Sector};
-pub use polygon::{ConvexPolygon, PolygonKind};
+pub use polygon::{ConvexPolygon, MAX_COORDINATE, PolygonKind};

@@ -26,6 +26,11 @@ pub const RELATIVE_TOLERANCE: f64 = 1e-9;
 /// carry an error of a few `ε·X`, so lengths below that cannot be resolved at all.
 const ROUNDING_ULPS: f64 = 8.0 * f64::EPSILON;
 
+/// Largest coordinate size a polygon accepts: 1e75. The centroid sums `(xᵢ + xⱼ)·(xᵢ yⱼ − xⱼ yᵢ)`,
+/// a cube of coordinates, so 1e75 keeps every term near 1e226 and any sum far from f64's 1.8e308
+/// overflow; contact polygons are within 1e5 m of the origin.
+pub const MAX_COORDINATE: f64 = 1e75;
+
 /// What a support polygon degenerates to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PolygonKind {
@@ -52,7 +57,8 @@ impl ConvexPolygon {
     /// The convex hull of `points`, counter-clockwise, with repeated and collinear points removed.
     ///
     /// One distinct point gives a [`PolygonKind::Point`], collinear points a
-    /// [`PolygonKind::Segment`]. Fails on empty input or a non-finite coordinate.
+    /// [`PolygonKind::Segment`]. Fails on empty input, a non-finite
+    /// coordinate or one beyond [`MAX_COORDINATE`].
     ///
     /// ```
     /// use nalgebra::Point2;
@@ -78,6 +84,18 @@ impl ConvexPolygon {
                 index,
                 x: p.x,
                 y: p.y,
+            });
+        }
+        if let Some((index, p)) = points
+            .iter()
+            .enumerate()
+            .find(|(_, p)| p.x.abs().max(p.y.abs()) > MAX_COORDINATE)
+        {
+            return Err(GeometryError::OutOfRange {
+                index,
+                x: p.x,
+                y: p.y,
+                max: MAX_COORDINATE,
             });
         }
         let tolerance = length_tolerance(points);

@@ -96,3 +96,90 @@ fn box_on_box_twisted_45_degrees_keeps_all_eight_corners() {
     let octagon = ConvexPolygon::from_points(&pts).unwrap();
     assert_eq!(octagon.vertices().len(), 8);
 }
+
+/// Coordinates of 1e200 overflowed the centroid's cubic terms to a NaN centroid; beyond
+/// [`MAX_COORDINATE`] a polygon is refused, naming the point, and at the limit it is exact.
+#[test]
+fn coordinates_beyond_the_limit_are_refused() {
+    use tatami_geometry::MAX_COORDINATE;
+    let big = 1e200;
+    let error = ConvexPolygon::from_points(&[
+        Point2::new(0.0, 0.0),
+        Point2::new(big, 0.0),
+        Point2::new(0.0, big),
+    ])
+    .unwrap_err();
+    assert!(
+        matches!(error, GeometryError::OutOfRange { index: 1, .. }),
+        "{error}"
+    );
+    let m = MAX_COORDINATE;
+    let square = ConvexPolygon::from_points(&[
+        Point2::new(-m, -m),
+        Point2::new(m, -m),
+        Point2::new(m, m),
+        Point2::new(-m, m),
+    ])
+    .unwrap();
+    assert_eq!(square.area(), 4.0 * m * m);
+    assert_eq!(square.centroid(), Point2::origin());
+    let r = square.mean_distance(&Point2::new(m, m));
+    assert!(r.is_finite() && r > m, "{r}");
+}
+
+/// A segment whose end is a subnormal 2e-322 off the line through the query point: `d²`
+/// underflowed to 0 while `s/d` overflowed to ∞, and `r̄` was NaN (found by fuzzing). The mean
+/// distance from one end of a segment of length L is L/2.
+#[test]
+fn mean_distance_off_a_segment_by_a_subnormal_is_finite() {
+    let segment =
+        ConvexPolygon::from_points(&[Point2::new(-10.0, 2.37e-322), Point2::new(0.0, 0.0)])
+            .unwrap();
+    assert_eq!(segment.kind(), PolygonKind::Segment);
+    let r = segment.mean_distance(&Point2::origin());
+    assert!((r - 5.0).abs() < 1e-12, "{r}");
+}
+
+/// A fan triangle from a query point 7.5e-301 off an edge's line: `d³` underflowed to 0 while
+/// the logarithm's ratio overflowed, and `r̄` was NaN (found by fuzzing). The triangle is a
+/// needle along x (0.34 m high, 1.8e8 m long), so `r̄` is the mean of its triangular width
+/// profile, (a + b + m)/3 over its x extent [a, b] and apex m; the part at x < 0 is 1e-8 of it.
+#[test]
+fn mean_distance_from_a_point_a_subnormal_off_an_edge_is_finite() {
+    let polygon = ConvexPolygon::from_points(&[
+        Point2::new(-75686.27450980392, 7.540703440909437e-301),
+        Point2::new(94712748.91279468, 0.3373464560921645),
+        Point2::new(180056458.38101777, -0.0),
+    ])
+    .unwrap();
+    let c = Point2::origin();
+    let exact = polygon.mean_distance(&c);
+    let profile = (-75686.27450980392 + 180056458.38101777 + 94712748.91279468) / 3.0;
+    assert!(
+        (exact - profile).abs() < 1e-6 * profile,
+        "{exact} vs {profile}"
+    );
+}
+
+/// A needle 72 km long and 0.9 m wide, seen from its centroid 24 km away: the rays through two
+/// vertices are parallel to rounding, and the fan search put the point (0, 0), 0.11 m beyond
+/// the vertex (−0.11, 0), inside (found by fuzzing). Location and nearest point now agree with
+/// brute force.
+#[test]
+fn a_point_just_beyond_a_needle_is_outside() {
+    let needle = ConvexPolygon::from_points(&[
+        Point2::new(-72549.01960784313, 0.4985732814526589),
+        Point2::new(-0.1610360875867857, -0.3627450980392157),
+        Point2::new(-0.10981918059052415, 0.0),
+    ])
+    .unwrap();
+    let p = Point2::origin();
+    assert!(!tatami_geometry::brute_force::contains(&needle, &p));
+    assert!(!needle.contains(&p));
+    let nearest = needle.nearest_point(&p);
+    let reference = tatami_geometry::brute_force::nearest_point(&needle, &p);
+    assert!(
+        (nearest - reference).norm() < 1e-9,
+        "{nearest} vs {reference}"
+    );
+}

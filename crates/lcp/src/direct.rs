@@ -18,11 +18,12 @@
 //! [`LcpError::Unsupported`]; their contact model states the equivalent bounds form.
 //!
 //! The rows' incoming impulses are ignored: the bodies' velocities are taken as those before any
-//! contact impulse, and the answer's impulses are written into the rows and applied.
+//! contact impulse, and the answer's impulses, projected onto the row bounds to remove Lemke's
+//! round-off, are written into the rows and applied.
 
 use nalgebra::{DMatrix, DVector};
 
-use crate::{LcpError, Problem, Projection, RowBound, dense, lemke};
+use crate::{LcpError, Problem, Projection, RowBound, dense, lemke, project_to_bounds};
 
 /// Settings of a direct solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -84,7 +85,7 @@ pub fn solve<P: Projection>(
     problem: &mut Problem<P>,
     params: &DirectParams,
 ) -> Result<DirectInfo, LcpError> {
-    problem.validate()?;
+    problem.validate_bounds()?;
     let variables = StandardForm::variables(problem)?;
     let bytes = dense_bytes(problem.rows.len(), variables);
     if bytes > params.memory_budget {
@@ -101,8 +102,18 @@ pub fn solve<P: Projection>(
         &lcp.q,
         params.pivots_per_variable * lcp.q.len().max(1),
     )?;
-    let impulses = lcp.impulses(&x);
+    let mut impulses = lcp.impulses(&x);
+    // Lemke keeps w ≥ 0 only to round-off, so a slack's bound may be missed by a few ulps of
+    // the problem's scale; projecting onto the row bounds makes every answer admissible.
+    for block in &problem.blocks {
+        let rows = block.rows.clone();
+        project_to_bounds(
+            |k| block.projection.bound(k),
+            &mut impulses.as_mut_slice()[rows],
+        );
+    }
     apply(problem, &impulses);
+    problem.validate_bodies()?;
     Ok(DirectInfo {
         variables: lcp.q.len(),
         pivots,

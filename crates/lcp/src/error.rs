@@ -20,6 +20,13 @@ pub enum LcpError {
         /// The budget that was given.
         limit: usize,
     },
+    /// The pivots overflowed f64: entries far apart in size (1e300 beside 1) made the answer
+    /// infinite.
+    #[error("Lemke's method overflowed after {pivots} pivots: the problem is too badly scaled")]
+    Overflow {
+        /// Pivots made.
+        pivots: usize,
+    },
     /// A matrix or vector entry was NaN or infinite.
     #[error("non-finite entry in the {what}")]
     NonFiniteInput {
@@ -42,7 +49,8 @@ pub enum LcpError {
         /// Its upper bound.
         hi: f64,
     },
-    /// A body's mass properties or velocity were not finite.
+    /// A body's mass properties or velocity were not finite, or its velocity overflowed in
+    /// the solve.
     #[error("body {} has a non-finite mass property or velocity", body.0)]
     NonFiniteBody {
         /// The body.

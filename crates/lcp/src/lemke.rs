@@ -31,7 +31,8 @@ const PIVOT_TOLERANCE: f64 = 1e-12;
 /// Solves `z ≥ 0, w = a z + q ≥ 0, zᵀw = 0` by Lemke's method with at most `max_pivots` pivots.
 ///
 /// Errors: [`LcpError::RayTermination`] when no solution is found (e.g. an infeasible problem),
-/// [`LcpError::PivotLimit`], [`LcpError::NonFiniteInput`], [`LcpError::DimensionMismatch`].
+/// [`LcpError::PivotLimit`], [`LcpError::Overflow`], [`LcpError::NonFiniteInput`],
+/// [`LcpError::DimensionMismatch`].
 pub fn lemke(
     a: &DMatrix<f64>,
     q: &DVector<f64>,
@@ -81,7 +82,12 @@ pub fn solve(
         let error = |z| residual::lcp_error(a, q, z).unwrap_or(f64::INFINITY);
         error(p) < error(&z)
     });
-    Ok((polished.unwrap_or(z), pivots))
+    let z = polished.unwrap_or(z);
+    if z.iter().all(|x| x.is_finite()) {
+        Ok((z, pivots))
+    } else {
+        Err(LcpError::Overflow { pivots })
+    }
 }
 
 /// Row-major tableau `[w (n) | z (n) | z₀ | rhs]` with the basic variable of each row.

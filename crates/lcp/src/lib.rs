@@ -67,13 +67,7 @@ impl<P> Default for Problem<P> {
 impl<P> Problem<P> {
     /// Checks indices and finiteness before a solve, naming the first offender.
     pub fn validate(&self) -> Result<(), LcpError> {
-        for (index, body) in self.bodies.iter().enumerate() {
-            if !body.is_finite() {
-                return Err(LcpError::NonFiniteBody {
-                    body: BodyId(index),
-                });
-            }
-        }
+        self.validate_bodies()?;
         let mut next_row = 0;
         for (block, b) in self.blocks.iter().enumerate() {
             let fits = b.rows.start == next_row
@@ -97,17 +91,45 @@ impl<P> Problem<P> {
     }
 }
 
+impl<P> Problem<P> {
+    /// Every body's mass properties and velocities are finite: checked before a solve, and
+    /// after it, since huge but finite rows and masses can overflow the velocities.
+    pub(crate) fn validate_bodies(&self) -> Result<(), LcpError> {
+        match self.bodies.iter().position(|body| !body.is_finite()) {
+            Some(index) => Err(LcpError::NonFiniteBody {
+                body: BodyId(index),
+            }),
+            None => Ok(()),
+        }
+    }
+}
+
 impl<P: Projection> Problem<P> {
-    /// [`Problem::validate`], and every friction bound names a row of its own block.
+    /// [`Problem::validate`], and every row bound is well formed: a box's `lo ≤ hi` (neither
+    /// NaN), a friction coefficient `≥ 0` (not NaN) whose normal row is a
+    /// [`RowBound::NonNegative`] row of its own block.
     pub fn validate_bounds(&self) -> Result<(), LcpError> {
         self.validate()?;
         for (index, block) in self.blocks.iter().enumerate() {
             let rows = block.rows.len();
-            let outside = (0..rows).any(|row| {
-                matches!(block.projection.bound(row), Some(RowBound::Friction { normal, .. }) if normal >= rows)
-            });
-            if outside {
-                return Err(LcpError::MalformedBlock { block: index });
+            for k in 0..rows {
+                match block.projection.bound(k) {
+                    Some(RowBound::Box { lo, hi }) if lo.is_nan() || hi.is_nan() || lo > hi => {
+                        let row = block.rows.start + k;
+                        return Err(LcpError::InvalidBounds { row, lo, hi });
+                    }
+                    Some(RowBound::Friction {
+                        normal,
+                        coefficient,
+                    }) if normal >= rows
+                        || block.projection.bound(normal) != Some(RowBound::NonNegative)
+                        || coefficient.is_nan()
+                        || coefficient < 0.0 =>
+                    {
+                        return Err(LcpError::MalformedBlock { block: index });
+                    }
+                    _ => {}
+                }
             }
         }
         Ok(())

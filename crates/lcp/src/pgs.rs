@@ -151,6 +151,7 @@ pub fn solve_in_place<P: Projection>(
             info.impulse_change.push(change);
         }
     }
+    problem.validate_bodies()?;
     Ok(info)
 }
 
@@ -339,7 +340,7 @@ pub fn shock_propagation<P: Projection>(
         );
         update_block(problem, workspace, index, start..end, 1.0)?;
     }
-    Ok(())
+    problem.validate_bodies()
 }
 
 /// Writes the responses of `block`'s rows between bodies `a` and `b` into `out` (one per row),

@@ -380,3 +380,85 @@ fn a_direct_problem_over_the_memory_budget_is_refused() {
     direct::solve(&mut problem, &exact).unwrap();
     assert!(direct::dense_bytes(usize::MAX, usize::MAX) == usize::MAX);
 }
+
+/// A box bound with `lo > hi`, a negative friction coefficient or a friction row scaled by a
+/// row that is not a normal (itself, here) was solved by PGS as if valid, leaving an impulse
+/// outside its bounds (found by fuzzing); every solver now refuses them.
+#[test]
+fn malformed_row_bounds_are_refused_by_every_solver() {
+    let one_row = |bound: RowBound| Problem {
+        bodies: vec![
+            SolverBody::fixed(),
+            cube(1.0, 2.0, Vector3::new(0.0, 0.0, -1.0)),
+        ],
+        rows: vec![
+            point_row(Vector3::zeros(), Vector3::z()),
+            point_row(Vector3::zeros(), Vector3::x()),
+        ],
+        blocks: vec![Block {
+            body_a: BodyId(1),
+            body_b: BodyId(0),
+            rows: 0..2,
+            projection: BoundsProjection(vec![RowBound::NonNegative, bound]),
+        }],
+    };
+    let reversed = one_row(RowBound::Box { lo: 0.02, hi: 0.0 });
+    let negative = one_row(RowBound::Friction {
+        normal: 0,
+        coefficient: -0.5,
+    });
+    let circular = one_row(RowBound::Friction {
+        normal: 1,
+        coefficient: 0.5,
+    });
+    for (mut problem, expected) in [
+        (circular, LcpError::MalformedBlock { block: 0 }),
+        (
+            reversed,
+            LcpError::InvalidBounds {
+                row: 1,
+                lo: 0.02,
+                hi: 0.0,
+            },
+        ),
+        (negative, LcpError::MalformedBlock { block: 0 }),
+    ] {
+        assert_eq!(pgs::solve(&mut problem.clone()).unwrap_err(), expected);
+        let mut workspace = PgsWorkspace::default();
+        assert_eq!(
+            pgs::shock_propagation(&mut problem.clone(), &mut workspace, &[]).unwrap_err(),
+            expected
+        );
+        assert_eq!(
+            direct::solve(&mut problem, &direct::DirectParams::default()).unwrap_err(),
+            expected
+        );
+    }
+}
+
+/// Finite but huge numbers overflow the velocities within the solve: here a warm-start
+/// impulse of 1e300 on a body of 1e-10 kg. PGS once returned `Ok` with an infinite body (found
+/// by fuzzing); it now names the body.
+#[test]
+fn velocities_that_overflow_in_the_solve_name_the_body() {
+    let mut row = point_row(Vector3::zeros(), Vector3::z());
+    row.impulse = 1e300;
+    let mut problem = Problem {
+        bodies: vec![SolverBody::fixed(), cube(1e-10, 2.0, Vector3::zeros())],
+        rows: vec![row],
+        blocks: vec![Block {
+            body_a: BodyId(1),
+            body_b: BodyId(0),
+            rows: 0..1,
+            projection: BoundsProjection(vec![RowBound::NonNegative]),
+        }],
+    };
+    let params = PgsParams {
+        warm_start: WarmStart::On,
+        ..PgsParams::default()
+    };
+    assert_eq!(
+        pgs::solve_in_place(&mut problem, &mut PgsWorkspace::default(), &params).unwrap_err(),
+        LcpError::NonFiniteBody { body: BodyId(1) }
+    );
+}

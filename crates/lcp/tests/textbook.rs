@@ -137,3 +137,22 @@ fn pgs_dense_solves_a_boxed_problem() {
     let w = &a * &z + &q;
     assert!(residual::box_complementarity(&z, &w, &lo, &hi).unwrap() < 1e-12);
 }
+
+/// A column-major `a` with entries from 1e-4 down to 8e-12 against `q` of −9e298: the answer
+/// passes f64's 1.8e308. Lemke once returned ∞ as an answer (found by fuzzing) and now reports
+/// the overflow.
+#[test]
+fn an_answer_beyond_f64_is_an_overflow_error() {
+    let a = DMatrix::from_column_slice(
+        2,
+        2,
+        &[
+            7.843137254901962e-12,
+            0.00015259021896696422,
+            0.0,
+            8.987563897154192e-11,
+        ],
+    );
+    let q = DVector::from_element(2, -9.019607843137254e298);
+    assert!(matches!(lemke(&a, &q, 50), Err(LcpError::Overflow { .. })));
+}

@@ -211,11 +211,17 @@ mod tests {
             let p: Vec<Point3<f64>> = (0..4)
                 .map(|_| Point3::new(uniform(), uniform(), uniform()) * scale)
                 .collect();
-            let want = (p[1] - p[0]).cross(&(p[2] - p[0])).dot(&(p[3] - p[0])).abs() / 6.0;
+            let want = (p[1] - p[0])
+                .cross(&(p[2] - p[0]))
+                .dot(&(p[3] - p[0]))
+                .abs()
+                / 6.0;
             if want < 1e-6 * scale.powi(3) {
                 continue; // nearly flat: no volume to compare
             }
-            let got = convex_mass_properties(&p).expect("a tetrahedron has a hull").volume;
+            let got = convex_mass_properties(&p)
+                .expect("a tetrahedron has a hull")
+                .volume;
             assert!((got - want).abs() <= 1e-9 * want, "{p:?}: {got} vs {want}");
         }
     }

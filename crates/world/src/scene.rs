@@ -423,11 +423,9 @@ impl RawScene {
         }
         settings.shock_propagation = self.shock_propagation == Some(true);
         Scene {
-            gravity: self.gravity.unwrap_or(Vector3::new(
-                0.0,
-                0.0,
-                -crate::DEFAULT_GRAVITY,
-            )),
+            gravity: self
+                .gravity
+                .unwrap_or(Vector3::new(0.0, 0.0, -crate::DEFAULT_GRAVITY)),
             dt: self.dt.unwrap_or(DEFAULT_DT),
             steps: self.steps.unwrap_or(DEFAULT_STEPS),
             settings,
