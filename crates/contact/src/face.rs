@@ -12,7 +12,7 @@
 
 use nalgebra::Point2;
 use tatami_geometry::{ConvexPolygon, Sector};
-use tatami_lcp::{Block, Problem, Projection, Row, RowBound};
+use tatami_lcp::{Block, LinearSet, Problem, Projection, Row, RowBound};
 
 use crate::jacobian::{angular_jacobian, point_jacobian, point_motion, twist_rate};
 use crate::target::normal_target;
@@ -107,9 +107,39 @@ impl Projection for FaceProjection {
     }
 
     /// Only the normal row is a plain bound: the torques' ZMP constraint is not a product of row
-    /// bounds, so the direct solver rejects face blocks.
+    /// bounds (see [`Projection::linear_set`]).
     fn bound(&self, row: usize) -> Option<RowBound> {
         (row == NORMAL).then_some(RowBound::NonNegative)
+    }
+
+    /// The face's admissible wrenches exactly: `(f3, τ1, τ2) = Σ βₖ (1, yₖ, −xₖ)` over the
+    /// support polygon's vertices `(xₖ, yₖ)` relative to `G`, `βₖ ≥ 0` — the centre of pressure
+    /// `(−τ2, τ1)/f3 = Σ βₖ (xₖ, yₖ)/Σ βₖ` is then any point of the polygon, and `βₖ` is the
+    /// normal force at vertex `k` (its condition is that vertex's separation speed ≥ 0). Friction
+    /// and twist act at `G`, bounded by `μ f3` and `μ r̄ f3` with `f3 = Σ βₖ`. `None` with the
+    /// parallel-torque variant, which is not linear.
+    fn linear_set(&self, rows: usize) -> Option<LinearSet> {
+        if self.remove_parallel_torque {
+            return None;
+        }
+        let mut set = LinearSet::new(rows);
+        let vertices: Vec<usize> = self
+            .support
+            .vertices()
+            .iter()
+            .map(|v| {
+                let r = v - self.centre;
+                set.generator(vec![(NORMAL, 1.0), (TILT_1, r.y), (TILT_2, -r.x)])
+            })
+            .collect();
+        let friction: Vec<(usize, f64)> = vertices.iter().map(|&v| (v, self.friction)).collect();
+        self.cone.add_to(&mut set, FRICTION_1, &friction);
+        let twist = vertices
+            .iter()
+            .map(|&v| (v, self.twist_per_normal))
+            .collect();
+        set.symmetric(TWIST, twist);
+        Some(set)
     }
 }
 

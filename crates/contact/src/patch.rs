@@ -4,7 +4,7 @@
 //! `dᵢ = |vᵢ − c|`. One block of `k + 3` rows.
 
 use nalgebra::Point2;
-use tatami_lcp::{Block, Problem, Projection, Row, RowBound};
+use tatami_lcp::{Block, LinearSet, Problem, Projection, Row, RowBound};
 
 use crate::jacobian::{angular_jacobian, point_jacobian, point_motion, twist_rate};
 use crate::target::normal_target;
@@ -44,9 +44,25 @@ impl Projection for PatchProjection {
     }
 
     /// The normal rows are plain bounds; the friction rows are bounded by a sum of normals, which
-    /// is not a product of row bounds (the direct solver rejects the block).
+    /// is not a product of row bounds (see [`Projection::linear_set`]).
     fn bound(&self, row: usize) -> Option<RowBound> {
         (row < self.distances.len()).then_some(RowBound::NonNegative)
+    }
+
+    /// A generator per normal row; friction earns `μ` from each, twist `μ_t dᵢ`.
+    fn linear_set(&self, rows: usize) -> Option<LinearSet> {
+        let k = self.distances.len();
+        let mut set = LinearSet::new(rows);
+        let normals: Vec<usize> = (0..k).map(|i| set.generator(vec![(i, 1.0)])).collect();
+        let earn: Vec<(usize, f64)> = normals.iter().map(|&v| (v, self.friction)).collect();
+        self.cone.add_to(&mut set, k, &earn);
+        let twist = normals
+            .iter()
+            .zip(&self.distances)
+            .map(|(&v, d)| (v, self.twist_friction * d))
+            .collect();
+        set.symmetric(k + 2, twist);
+        Some(set)
     }
 }
 

@@ -1,6 +1,6 @@
 //! Projection of a point contact's three rows: normal, then friction along `t1`, `t2`.
 
-use tatami_lcp::{Projection, RowBound};
+use tatami_lcp::{LinearSet, Projection, RowBound};
 
 use crate::FrictionCone;
 
@@ -34,6 +34,14 @@ impl Projection for PointFriction {
             }),
             _ => None,
         }
+    }
+
+    /// `λₙ ≥ 0` and the cone ([`FrictionCone::add_to`]).
+    fn linear_set(&self, rows: usize) -> Option<LinearSet> {
+        let mut set = LinearSet::new(rows);
+        let normal = set.generator(vec![(0, 1.0)]);
+        self.cone.add_to(&mut set, 1, &[(normal, self.coefficient)]);
+        Some(set)
     }
 }
 

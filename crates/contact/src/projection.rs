@@ -1,6 +1,6 @@
 //! One projection type for the blocks of every contact model, so one problem holds them all.
 
-use tatami_lcp::{Projection, RowBound};
+use tatami_lcp::{LinearSet, Projection, RowBound};
 
 use crate::PointFriction;
 use crate::face::FaceProjection;
@@ -39,6 +39,14 @@ impl Projection for ContactProjection {
             Self::Point(p) => p.bound(row),
             Self::Patch(p) => p.bound(row),
             Self::Face(p) => p.bound(row),
+        }
+    }
+
+    fn linear_set(&self, rows: usize) -> Option<LinearSet> {
+        match self {
+            Self::Point(p) => p.linear_set(rows),
+            Self::Patch(p) => p.linear_set(rows),
+            Self::Face(p) => p.linear_set(rows),
         }
     }
 }

@@ -1,16 +1,19 @@
 //! Settings shared by every contact model: penetration bias, restitution, friction switching.
 
+use tatami_lcp::{Budget, LinearSet};
+
 /// Shape of the friction bound at a point.
 ///
 /// Decision record: the circle is the default because Coulomb friction is isotropic — a box
 /// sliding diagonally must keep its heading and stop at `v²/(2μg)` whatever the orientation of
 /// the contact frame's tangents, which are arbitrary. The pyramid bounds each tangent apart, so
 /// it lets a diagonal slide up to √2 μ f3 of friction and turns it towards an axis; it stays for
-/// reproducing the paper and for the direct solver, whose problem must be linear.
+/// reproducing the paper. The direct solver, whose problem must be linear, takes the circle as
+/// its inscribed polygon of [`FrictionCone::DIRECT_FACETS`] sides.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum FrictionCone {
     /// `|f1| ≤ μ f3` and `|f2| ≤ μ f3` separately (the paper's eq. 4): a pyramid aligned with
-    /// the tangents, linear, so the direct solver handles it exactly. PGS updates and clamps
+    /// the tangents, linear, so the direct solver solves it as it is. PGS updates and clamps
     /// each tangent row alone, the projected Gauss–Seidel of that pyramid.
     Box,
     /// `|(f1, f2)| ≤ μ f3`: isotropic Coulomb friction (default). PGS updates the two tangent
@@ -20,6 +23,37 @@ pub enum FrictionCone {
 }
 
 impl FrictionCone {
+    /// Sides of the regular polygon inscribed in the circle that the direct solver solves
+    /// with: its friction reaches `μ f3` towards each corner and `cos(π/16) μ f3 = 0.981 μ f3`
+    /// mid-side, so it bounds friction up to 1.9% short of the circle (a slide's deceleration
+    /// is between 0.981 μg and μg, depending on its heading).
+    pub const DIRECT_FACETS: usize = 16;
+
+    /// Adds the friction of tangent rows `first`, `first + 1` to `set`, bounded by the normal
+    /// impulse that `earn` carries (generator, rate `μ`): the box as two symmetric budgets, the
+    /// circle as its inscribed polygon of [`Self::DIRECT_FACETS`] generators spending one.
+    pub fn add_to(self, set: &mut LinearSet, first: usize, earn: &[(usize, f64)]) {
+        match self {
+            Self::Box => {
+                set.symmetric(first, earn.to_vec());
+                set.symmetric(first + 1, earn.to_vec());
+            }
+            Self::Circle => {
+                let spend = (0..Self::DIRECT_FACETS)
+                    .map(|j| {
+                        let angle = std::f64::consts::TAU * j as f64 / Self::DIRECT_FACETS as f64;
+                        set.generator(vec![(first, angle.cos()), (first + 1, angle.sin())])
+                    })
+                    .collect();
+                set.budgets.push(Budget {
+                    spend,
+                    earn: earn.to_vec(),
+                    constant: 0.0,
+                });
+            }
+        }
+    }
+
     /// The first tangent row of a block whose tangent rows start at `first`, if PGS must
     /// update the pair together ([`tatami_lcp::Projection::tangent_pair`]): for the circle.
     pub fn tangent_pair(self, first: usize) -> Option<usize> {

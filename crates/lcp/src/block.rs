@@ -15,7 +15,7 @@
 
 use std::ops::Range;
 
-use crate::BodyId;
+use crate::{BodyId, LinearSet};
 
 /// The rows of one contact between bodies A and B, and how their impulses are projected.
 #[derive(Debug, Clone, PartialEq)]
@@ -69,9 +69,15 @@ pub trait Projection {
         None
     }
 
-    /// Row `row`'s bound, if the admissible set is a product of row bounds; `None` otherwise
-    /// (the direct solver then rejects the block).
+    /// Row `row`'s bound, if the admissible set is a product of row bounds; `None` otherwise.
     fn bound(&self, row: usize) -> Option<RowBound>;
+
+    /// The admissible set of a block of `rows` rows as linear constraints, for the direct
+    /// solver; `None` if it has none (the direct solver then rejects the block). By default the
+    /// set of the row bounds ([`LinearSet::from_bounds`]).
+    fn linear_set(&self, rows: usize) -> Option<LinearSet> {
+        LinearSet::from_bounds(rows, |k| self.bound(k))
+    }
 }
 
 /// Projects `impulses` onto the bounds given by `bound_of`: normal rows first, then the rows

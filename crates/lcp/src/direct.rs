@@ -1,21 +1,23 @@
 //! The direct solver: the contact problem solved exactly, as the reference for PGS.
 //!
-//! **Which problem.** The one PGS solves when every block's projection is a product of
-//! [`RowBound`]s (what [`project_to_bounds`](crate::project_to_bounds) enforces): for each row,
-//! with `w` its velocity relative to its target after the impulses,
-//! - `NonNegative`: `λ ≥ 0 ⟂ w ≥ 0`;
-//! - `Friction { normal, μ }`: `|λ| ≤ μ λₙ`, with `w = 0` inside and `λ = ∓μ λₙ` when `w ≷ 0`
-//!   — box friction, one axis at a time (the *static* coefficient: the exact problem has no
-//!   sticking/sliding switch);
-//! - `Box { lo, hi }`: `λ` at `lo` with `w ≥ 0`, at `hi` with `w ≤ 0`, or between with `w = 0`.
+//! **Which problem.** Each block states its admissible impulses as linear constraints, a
+//! [`LinearSet`] (by default from its [`RowBound`](crate::RowBound)s; the contact models give
+//! theirs: the face model's centre of pressure as a cone over the support polygon's vertices,
+//! the circular friction cone as an inscribed polygon). With `w` the rows' velocities relative
+//! to their targets after the impulses, the answer satisfies maximal dissipation: `λ` in the
+//! set, and every generator's and budget's complementarity condition of
+//! [`crate::linear_set`]. For a normal row that is `λ ≥ 0 ⟂ w ≥ 0`; for box friction
+//! `|λ| ≤ μ λₙ` with `w = 0` inside and `λ = ∓μ λₙ` when `w ≷ 0` (the *static* coefficient: the
+//! exact problem has no sticking/sliding switch); for a box `λ` at `lo` with `w ≥ 0`, at `hi`
+//! with `w ≤ 0`, or between with `w = 0`.
 //!
-//! It is rewritten as a standard LCP and solved by [`lemke`](crate::lemke()):
-//! a friction row becomes `λ = β⁺ − β⁻` with a slack `γ`: `β⁺ ⟂ w + γ ≥ 0`,
-//! `β⁻ ⟂ −w + γ ≥ 0`, `γ ⟂ μ λₙ − β⁺ − β⁻ ≥ 0` (γ is the sliding speed); a finite box becomes
-//! `λ = lo + u`, `u ⟂ w + y ≥ 0`, `y ⟂ (hi − lo) − u ≥ 0`; a half-infinite box a shifted sign
-//! constraint and a free row `λ = u⁺ − u⁻`. Blocks whose projection is not a product of row
-//! bounds (the face model's centre-of-pressure clamp) are rejected with
-//! [`LcpError::Unsupported`]; their contact model states the equivalent bounds form.
+//! **The standard LCP.** The variables are the generators' weights `x ≥ 0` and one multiplier
+//! `γ ≥ 0` per budget. With `λ = offset + G x` and `w = A λ + b`, the conditions are
+//! `x ⟂ Gᵀw + Sᵀγ ≥ 0` and `γ ⟂ constant + E x − S x ≥ 0`, where `S` says which generators
+//! spend each budget and `E` what each earns: the matrix `[[GᵀAG, Sᵀ], [E − S, 0]]` and the
+//! vector `[Gᵀ(A offset + b), constant]`. For box friction this is the familiar
+//! `λ = β⁺ − β⁻`, `β± ⟂ ±w + γ ≥ 0`, `γ ⟂ μ λₙ − β⁺ − β⁻ ≥ 0`, `γ` the sliding speed. It is
+//! solved by [`lemke`](crate::lemke()).
 //!
 //! The rows' incoming impulses are ignored: the bodies' velocities are taken as those before any
 //! contact impulse, and the answer's impulses, projected onto the row bounds to remove Lemke's
@@ -23,7 +25,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use crate::{LcpError, Problem, Projection, RowBound, dense, lemke, project_to_bounds};
+use crate::{LcpError, LinearSet, Problem, Projection, dense, lemke, project_to_bounds};
 
 /// Settings of a direct solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -54,13 +56,15 @@ impl Default for DirectParams {
 }
 
 /// Bytes of dense storage a direct solve of `rows` contact rows and `variables` standard-LCP
-/// variables allocates: `A` (rows²), the standard matrix (variables²) and Lemke's tableau
-/// (variables × (2·variables + 2)), in f64. Saturates instead of overflowing.
+/// variables allocates: `A` (rows²), the standard matrix (variables²), Lemke's tableau
+/// (variables × (2·variables + 2)) and `A G` (variables × rows), in f64. Saturates instead of
+/// overflowing.
 pub fn dense_bytes(rows: usize, variables: usize) -> usize {
     let cells = rows
         .saturating_mul(rows)
         .saturating_add(variables.saturating_mul(variables))
-        .saturating_add(variables.saturating_mul(variables.saturating_mul(2).saturating_add(2)));
+        .saturating_add(variables.saturating_mul(variables.saturating_mul(2).saturating_add(2)))
+        .saturating_add(variables.saturating_mul(rows));
     cells.saturating_mul(std::mem::size_of::<f64>())
 }
 
@@ -73,20 +77,25 @@ pub struct DirectInfo {
     pub pivots: usize,
 }
 
-/// How one LCP variable enters the impulses: `λ[row] += sign · x`.
-#[derive(Debug, Clone, Copy)]
-struct Term {
-    row: usize,
-    sign: f64,
-}
-
 /// Solves `problem` exactly; writes impulses and velocities like the PGS solver.
 pub fn solve<P: Projection>(
     problem: &mut Problem<P>,
     params: &DirectParams,
 ) -> Result<DirectInfo, LcpError> {
     problem.validate_bounds()?;
-    let variables = StandardForm::variables(problem)?;
+    let sets = problem
+        .blocks
+        .iter()
+        .enumerate()
+        .map(|(index, block)| {
+            block
+                .projection
+                .linear_set(block.rows.len())
+                .filter(|set| set.offset.len() == block.rows.len() && set.is_well_formed())
+                .ok_or(LcpError::Unsupported { block: index })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let variables = sets.iter().map(LinearSet::variables).sum();
     let bytes = dense_bytes(problem.rows.len(), variables);
     if bytes > params.memory_budget {
         return Err(LcpError::TooLarge {
@@ -96,13 +105,13 @@ pub fn solve<P: Projection>(
         });
     }
     let (a, b) = dense::assemble(problem);
-    let lcp = StandardForm::new(problem, &a, &b)?;
+    let lcp = StandardForm::new(problem, sets, &a, &b);
     let (x, pivots) = lemke::solve(
         &lcp.matrix,
         &lcp.q,
         params.pivots_per_variable * lcp.q.len().max(1),
     )?;
-    let mut impulses = lcp.impulses(&x);
+    let mut impulses = lcp.impulses(problem, &x);
     // Lemke keeps w ≥ 0 only to round-off, so a slack's bound may be missed by a few ulps of
     // the problem's scale; projecting onto the row bounds makes every answer admissible.
     for block in &problem.blocks {
@@ -120,181 +129,98 @@ pub fn solve<P: Projection>(
     })
 }
 
-/// The standard LCP equivalent to the bounded rows, and the map back to impulses.
+/// The standard LCP equivalent to the blocks' linear sets, and the map back to impulses.
 struct StandardForm {
     matrix: DMatrix<f64>,
     q: DVector<f64>,
-    /// `λ = offset + Σ terms[v] · x[v]`.
-    offset: DVector<f64>,
-    terms: Vec<Option<Term>>,
-}
-
-/// The condition complementary to a variable: `sign · w[row] + extras ≥ 0`, or, for a slack,
-/// `constant + extras ≥ 0`.
-enum Condition {
-    Velocity { row: usize, sign: f64 },
-    Slack,
-}
-
-/// Accumulates variables, their conditions and the extra terms linking them.
-#[derive(Default)]
-struct Builder {
-    terms: Vec<Option<Term>>,
-    conditions: Vec<Condition>,
-    constant: Vec<f64>,
-    /// `(condition, variable, coefficient)` beyond the row-velocity part.
-    extra: Vec<(usize, usize, f64)>,
-}
-
-impl Builder {
-    /// A variable entering `λ[row]` with `sign`, complementary to `sign · w[row]` (+ extras).
-    fn impulse(&mut self, row: usize, sign: f64) -> usize {
-        self.add(Some(Term { row, sign }), Condition::Velocity { row, sign })
-    }
-
-    /// A slack variable that enters no impulse.
-    fn slack(&mut self, constant: f64) -> usize {
-        let v = self.add(None, Condition::Slack);
-        self.constant[v] = constant;
-        v
-    }
-
-    fn add(&mut self, term: Option<Term>, condition: Condition) -> usize {
-        self.terms.push(term);
-        self.conditions.push(condition);
-        self.constant.push(0.0);
-        self.terms.len() - 1
-    }
+    /// Each block's set and the index of its first variable: its generators, then one slack
+    /// per budget.
+    sets: Vec<(usize, LinearSet)>,
 }
 
 impl StandardForm {
-    /// Variables of the standard form of `problem`, counted without building it.
-    fn variables<P: Projection>(problem: &Problem<P>) -> Result<usize, LcpError> {
-        let mut count = 0usize;
-        for (index, block) in problem.blocks.iter().enumerate() {
-            for k in 0..block.rows.len() {
-                let bound = block
-                    .projection
-                    .bound(k)
-                    .ok_or(LcpError::Unsupported { block: index })?;
-                count += match bound {
-                    RowBound::NonNegative => 1,
-                    // β⁺, β⁻ and the sliding speed γ.
-                    RowBound::Friction { .. } => 3,
-                    RowBound::Box { lo, hi } => match (lo.is_finite(), hi.is_finite()) {
-                        (true, false) | (false, true) => 1,
-                        _ => 2,
-                    },
-                };
-            }
-        }
-        Ok(count)
-    }
-
-    fn new<P: Projection>(
+    /// Writes the complementarity of [`crate::linear_set`] for every block: generator `v` has
+    /// the condition `gᵥᵀ w + Σ γ ≥ 0` (the budgets it spends), budget `b` the condition
+    /// `constant + Σ c·x_earn − Σ x_spend ≥ 0`, with `w = A λ + b` and `λ = offset + G x`.
+    fn new<P>(
         problem: &Problem<P>,
+        sets: Vec<LinearSet>,
         a: &DMatrix<f64>,
         b: &DVector<f64>,
-    ) -> Result<Self, LcpError> {
+    ) -> Self {
         let m = problem.rows.len();
-        let mut form = Builder::default();
+        // Each generator as (global row, coefficient) pairs, in variable order.
+        let mut columns: Vec<(usize, &[(usize, f64)])> = Vec::new();
         let mut offset = DVector::zeros(m);
-        // Variable carrying each NonNegative row's impulse, for the friction bounds on it.
-        let mut normal_variable = vec![usize::MAX; m];
-        let mut friction_rows = Vec::new();
-        for (index, block) in problem.blocks.iter().enumerate() {
-            for (k, row) in block.rows.clone().enumerate() {
-                let bound = block
-                    .projection
-                    .bound(k)
-                    .ok_or(LcpError::Unsupported { block: index })?;
-                match bound {
-                    RowBound::NonNegative => normal_variable[row] = form.impulse(row, 1.0),
-                    RowBound::Friction {
-                        normal,
-                        coefficient,
-                    } => {
-                        let is_normal = normal < block.rows.len()
-                            && matches!(
-                                block.projection.bound(normal),
-                                Some(RowBound::NonNegative)
-                            );
-                        if !is_normal || coefficient.is_nan() || coefficient < 0.0 {
-                            return Err(LcpError::Unsupported { block: index });
-                        }
-                        friction_rows.push((row, block.rows.start + normal, coefficient));
-                    }
-                    RowBound::Box { lo, hi } => {
-                        if lo.is_nan() || hi.is_nan() || lo > hi {
-                            return Err(LcpError::InvalidBounds { row, lo, hi });
-                        }
-                        match (lo.is_finite(), hi.is_finite()) {
-                            (true, true) => {
-                                offset[row] = lo;
-                                let u = form.impulse(row, 1.0);
-                                let y = form.slack(hi - lo);
-                                form.extra.extend([(u, y, 1.0), (y, u, -1.0)]);
-                            }
-                            (true, false) => {
-                                offset[row] = lo;
-                                form.impulse(row, 1.0);
-                            }
-                            (false, true) => {
-                                offset[row] = hi;
-                                form.impulse(row, -1.0);
-                            }
-                            (false, false) => {
-                                form.impulse(row, 1.0);
-                                form.impulse(row, -1.0);
-                            }
-                        }
-                    }
-                }
+        let mut placed = Vec::with_capacity(sets.len());
+        let mut n = 0;
+        for (block, set) in problem.blocks.iter().zip(&sets) {
+            let first_row = block.rows.start;
+            for (k, &value) in set.offset.iter().enumerate() {
+                offset[first_row + k] = value;
             }
+            placed.push(n);
+            for (v, generator) in set.generators.iter().enumerate() {
+                columns.push((n + v, generator));
+            }
+            n += set.variables();
         }
-        for (row, normal_row, coefficient) in friction_rows {
-            let plus = form.impulse(row, 1.0);
-            let minus = form.impulse(row, -1.0);
-            let slack = form.slack(0.0);
-            form.extra.extend([
-                (plus, slack, 1.0),
-                (minus, slack, 1.0),
-                (slack, plus, -1.0),
-                (slack, minus, -1.0),
-                (slack, normal_variable[normal_row], coefficient),
-            ]);
-        }
-
-        let n = form.terms.len();
+        let row_of = |block: usize, k: usize| problem.blocks[block].rows.start + k;
+        let block_of: Vec<usize> = (0..sets.len())
+            .flat_map(|i| std::iter::repeat_n(i, sets[i].generators.len()))
+            .collect();
         let velocity_at_offset = a * &offset + b;
         let mut matrix = DMatrix::zeros(n, n);
-        let mut q = DVector::from_vec(form.constant);
-        for (c, condition) in form.conditions.iter().enumerate() {
-            if let Condition::Velocity { row, sign } = *condition {
-                q[c] += sign * velocity_at_offset[row];
-                for (v, term) in form.terms.iter().enumerate() {
-                    if let Some(t) = term {
-                        matrix[(c, v)] += sign * t.sign * a[(row, t.row)];
-                    }
+        let mut q = DVector::zeros(n);
+        // A G, one column per generator: how each row's velocity moves per unit of it.
+        let moved: Vec<DVector<f64>> = columns
+            .iter()
+            .zip(&block_of)
+            .map(|(&(_, generator), &block)| {
+                generator.iter().fold(DVector::zeros(m), |sum, &(k, c)| {
+                    sum + a.column(row_of(block, k)) * c
+                })
+            })
+            .collect();
+        for (&(c, generator), &block) in columns.iter().zip(&block_of) {
+            let along = |vector: &DVector<f64>| -> f64 {
+                generator
+                    .iter()
+                    .map(|&(k, coefficient)| coefficient * vector[row_of(block, k)])
+                    .sum()
+            };
+            q[c] = along(&velocity_at_offset);
+            for (&(v, _), column) in columns.iter().zip(&moved) {
+                matrix[(c, v)] = along(column);
+            }
+        }
+        for (set, &first) in sets.iter().zip(&placed) {
+            for (index, budget) in set.budgets.iter().enumerate() {
+                let slack = first + set.generators.len() + index;
+                q[slack] = budget.constant;
+                for &v in &budget.spend {
+                    matrix[(first + v, slack)] += 1.0;
+                    matrix[(slack, first + v)] -= 1.0;
+                }
+                for &(v, rate) in &budget.earn {
+                    matrix[(slack, first + v)] += rate;
                 }
             }
         }
-        for (c, v, coefficient) in form.extra {
-            matrix[(c, v)] += coefficient;
-        }
-        Ok(Self {
+        Self {
             matrix,
             q,
-            offset,
-            terms: form.terms,
-        })
+            sets: placed.into_iter().zip(sets).collect(),
+        }
     }
 
-    fn impulses(&self, x: &DVector<f64>) -> DVector<f64> {
-        let mut lambda = self.offset.clone();
-        for (v, term) in self.terms.iter().enumerate() {
-            if let Some(t) = term {
-                lambda[t.row] += t.sign * x[v];
+    /// The impulses of the LCP's answer `x`.
+    fn impulses<P>(&self, problem: &Problem<P>, x: &DVector<f64>) -> DVector<f64> {
+        let mut lambda = DVector::zeros(problem.rows.len());
+        for (block, (first, set)) in problem.blocks.iter().zip(&self.sets) {
+            let values = &x.as_slice()[*first..*first + set.generators.len()];
+            for (k, value) in set.impulses(values).into_iter().enumerate() {
+                lambda[block.rows.start + k] = value;
             }
         }
         lambda

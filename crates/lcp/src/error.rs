@@ -81,9 +81,10 @@ pub enum LcpError {
         /// The budget ([`DirectParams::memory_budget`](crate::direct::DirectParams)).
         budget: usize,
     },
-    /// The direct solver met a block whose constraint set is not a product of row bounds.
+    /// The direct solver met a block whose admissible set has no linear form
+    /// ([`Projection::linear_set`](crate::Projection::linear_set) gave `None` or a malformed set).
     #[error(
-        "block {block} cannot be written as row bounds; the direct solver needs its bounds form"
+        "block {block} has no linear form of its admissible set, which the direct solver needs"
     )]
     Unsupported {
         /// Index of the block.

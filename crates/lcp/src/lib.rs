@@ -29,6 +29,7 @@ pub mod dense;
 pub mod direct;
 mod error;
 pub mod lemke;
+pub mod linear_set;
 pub mod pgs;
 pub mod residual;
 mod row;
@@ -38,6 +39,7 @@ pub use body::{BodyId, SolverBody};
 pub use dense::pgs_dense;
 pub use error::LcpError;
 pub use lemke::lemke;
+pub use linear_set::{Budget, LinearSet};
 pub use row::{Jacobian, Row};
 
 /// Bodies, rows and blocks: one velocity-level contact problem.

@@ -1,6 +1,6 @@
 //! World settings: contact model, solver, contact tuning, collision tolerances.
 
-use tatami_contact::{ContactModel, ContactSettings, FrictionCone, TwistRadius};
+use tatami_contact::{ContactModel, ContactSettings, TwistRadius};
 use tatami_lcp::direct::DirectParams;
 use tatami_lcp::pgs::{PgsParams, WarmStart};
 
@@ -15,9 +15,9 @@ pub const MAX_ITERATIONS: usize = 100_000;
 pub enum Solver {
     /// Projected Gauss–Seidel (sequential impulses), the default.
     Pgs(PgsParams),
-    /// The pivoting direct solver (dense, exact; for reference and comparison). Its problem
-    /// must be linear, so it takes friction as the pyramid ([`FrictionCone::Box`]) whatever
-    /// [`ContactSettings::friction_cone`] says (see [`WorldSettings::contact_for_solver`]).
+    /// The pivoting direct solver (dense, exact; for reference and comparison), for every
+    /// contact model. Its problem must be linear, so it takes the circular friction cone as its
+    /// inscribed polygon of [`tatami_contact::FrictionCone::DIRECT_FACETS`] sides.
     Direct(DirectParams),
 }
 
@@ -68,18 +68,6 @@ impl Default for WorldSettings {
 }
 
 impl WorldSettings {
-    /// The contact settings the rows are built with: [`WorldSettings::contact`], with the
-    /// friction pyramid for the direct solver, whose problem must be linear.
-    pub fn contact_for_solver(&self) -> ContactSettings {
-        match self.solver {
-            Solver::Pgs(_) => self.contact,
-            Solver::Direct(_) => ContactSettings {
-                friction_cone: FrictionCone::Box,
-                ..self.contact
-            },
-        }
-    }
-
     /// Checks every number is finite and in range.
     pub fn validate(&self) -> Result<(), WorldError> {
         let check = |field: &'static str, value: f64, ok: bool, range: &str| {

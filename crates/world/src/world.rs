@@ -278,7 +278,7 @@ impl World {
         problem.rows.clear();
         problem.blocks.clear();
         self.biases.clear();
-        let contact_settings = self.settings.contact_for_solver();
+        let contact_settings = self.settings.contact;
         let pairs = self.contact_set.contacts().len();
         for index in 0..pairs {
             let first = problem.blocks.len();
