@@ -52,6 +52,22 @@ fn parse_model(name: &str) -> Result<ContactModel, String> {
 pub fn run(args: &Args) -> Result<(), String> {
     let mut scene = Scene::load(&args.scene).map_err(|e| e.to_string())?;
     apply_overrides(&mut scene, args)?;
+    if matches!(scene.settings.solver, Solver::Direct(_)) {
+        let mut ignored: Vec<String> = scene
+            .pgs_settings
+            .iter()
+            .map(|s| format!("`{s}`"))
+            .collect();
+        if args.iterations.is_some() {
+            ignored.push("--iterations".into());
+        }
+        if !ignored.is_empty() {
+            eprintln!(
+                "note: the direct solver ignores the PGS settings {}",
+                ignored.join(", ")
+            );
+        }
+    }
     let mut world = scene.world().map_err(|e| e.to_string())?;
     let output: Box<dyn Write> = match &args.out {
         Some(path) => Box::new(BufWriter::new(
@@ -117,11 +133,8 @@ fn apply_overrides(scene: &mut Scene, args: &Args) -> Result<(), String> {
         if iterations == 0 {
             return Err("--iterations must be ≥ 1".into());
         }
-        match &mut scene.settings.solver {
-            Solver::Pgs(params) => params.iterations = iterations,
-            Solver::Direct(_) => {
-                return Err("--iterations applies to the pgs solver, not direct".into());
-            }
+        if let Solver::Pgs(params) = &mut scene.settings.solver {
+            params.iterations = iterations;
         }
     }
     Ok(())

@@ -70,3 +70,46 @@ fn bad_input_is_one_line_and_a_failure_status() {
     assert!(!model.status.success());
     assert!(String::from_utf8_lossy(&model.stderr).contains("unknown model `springs`"));
 }
+
+/// Every model runs under the direct solver. PGS-only settings given explicitly (by the scene or
+/// the command line) are named in one line on standard error; the defaults say nothing.
+#[test]
+fn the_direct_solver_runs_every_model_and_names_the_pgs_settings_it_ignores() {
+    let tower = scene("tower_10.json"); // sets "iterations" and "warm_start"
+    let pair = scene("offset_pair.json"); // sets no solver setting
+    for model in ["vertex", "patch", "face"] {
+        let out = xtask(&[
+            "simulate",
+            pair.to_str().unwrap(),
+            "--solver",
+            "direct",
+            "--model",
+            model,
+            "--steps",
+            "20",
+        ]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{model}: {stderr}");
+        assert!(!stderr.contains("ignores"), "{model}: {stderr}");
+    }
+    let out = xtask(&[
+        "simulate",
+        tower.to_str().unwrap(),
+        "--solver",
+        "direct",
+        "--iterations",
+        "4",
+        "--steps",
+        "5",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let notes: Vec<&str> = stderr.lines().filter(|l| l.contains("ignores")).collect();
+    assert_eq!(notes.len(), 1, "{stderr}");
+    assert!(
+        notes[0].contains("`iterations`")
+            && notes[0].contains("`warm_start`")
+            && notes[0].contains("--iterations"),
+        "{stderr}"
+    );
+}

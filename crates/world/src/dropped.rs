@@ -139,5 +139,6 @@ pub fn dropped_scene(seed: u64) -> Scene {
         steps: DROP_STEPS,
         settings: WorldSettings::default(),
         bodies,
+        pgs_settings: Vec::new(),
     }
 }

@@ -99,6 +99,9 @@ pub struct Scene {
     pub settings: WorldSettings,
     /// Bodies, in order.
     pub bodies: Vec<BodyDesc>,
+    /// The PGS-only settings the scene gives explicitly (`iterations`, `warm_start`,
+    /// `shock_propagation`), so that a run with the direct solver can say it ignores them.
+    pub pgs_settings: Vec<&'static str>,
 }
 
 impl Scene {
@@ -422,7 +425,16 @@ impl RawScene {
             settings.contact.max_velocity_bias = speed.0;
         }
         settings.shock_propagation = self.shock_propagation == Some(true);
+        let given = [
+            ("iterations", self.iterations.is_some()),
+            ("warm_start", self.warm_start.is_some()),
+            ("shock_propagation", self.shock_propagation.is_some()),
+        ];
         Scene {
+            pgs_settings: given
+                .into_iter()
+                .filter_map(|(name, set)| set.then_some(name))
+                .collect(),
             gravity: self
                 .gravity
                 .unwrap_or(Vector3::new(0.0, 0.0, -crate::DEFAULT_GRAVITY)),
