@@ -35,7 +35,7 @@ pub use builder::{DEFAULT_GRAVITY, GRAVITY_LIMIT, WorldBuilder};
 pub use error::{StepError, WorldError};
 pub use settings::{MAX_ITERATIONS, Solver, WorldSettings};
 pub use shape::{LENGTHS, MassProperties, Shape};
-pub use tatami_contact::{ContactModel, ContactSettings, FrictionCone};
+pub use tatami_contact::{ContactModel, ContactProjection, ContactSettings, FrictionCone};
 pub use tatami_lcp::direct::DirectParams;
 pub use tatami_lcp::pgs::{PgsParams, WarmStart};
 pub use timings::StepTimings;

@@ -3,9 +3,9 @@
 //!
 //! The solver call is timed by the world (`StepTimings::solve`), so collision and integration
 //! are left out as in the paper. The median over the steps after a warm-up of 10% resists the
-//! shared machine's noise; the 90th percentile shows the spread. The direct solver runs the
-//! vertex model (the only one it accepts) over fewer steps, and stops growing N once a step
-//! takes longer than the plan allows.
+//! shared machine's noise; the 90th percentile shows the spread. The direct solver runs every
+//! model over fewer steps, and stops growing N for a model once a step takes longer than the
+//! plan allows.
 
 use std::time::{Duration, Instant};
 
@@ -311,15 +311,15 @@ pub fn run(plan: &Plan, out: &std::path::Path, progress: &Progress) -> Result<Ou
         shock: true,
     };
     configs.push(shock);
-    let direct = Config {
-        model: ContactModel::Vertex,
+    let directs = ContactModel::ALL.map(|model| Config {
+        model,
         direct: true,
         warm_start: false,
         shock: false,
-    };
+    });
     let bar = progress.bar(
         "stack timing",
-        (plan.sizes.len() * (configs.len() + 1)) as u64,
+        (plan.sizes.len() * (configs.len() + directs.len())) as u64,
     );
     let mut runs = Vec::new();
     for &cubes in &plan.sizes {
@@ -333,24 +333,31 @@ pub fn run(plan: &Plan, out: &std::path::Path, progress: &Progress) -> Result<Ou
             bar.inc(1);
         }
     }
-    let mut direct_stopped = None;
-    for &cubes in &plan.sizes {
-        bar.set_message(format!("direct × {cubes}"));
-        if direct_stopped.is_none() {
-            let run = measure(
-                &template,
-                direct,
-                cubes,
-                plan.direct_steps,
-                plan.repeats.div_ceil(10),
-            )?;
-            let too_slow = run.median_ms > plan.direct_limit.as_secs_f64() * 1e3;
-            if too_slow || run.median_ms.is_nan() {
-                direct_stopped = Some(cubes);
+    // Per model, the first height at which the direct solver was too slow or failed.
+    let mut direct_stopped = Vec::new();
+    for direct in directs {
+        let mut stopped = None;
+        for &cubes in &plan.sizes {
+            bar.set_message(format!("{} × {cubes}", direct.label()));
+            if stopped.is_none() {
+                let run = measure(
+                    &template,
+                    direct,
+                    cubes,
+                    plan.direct_steps,
+                    plan.repeats.div_ceil(10),
+                )?;
+                let too_slow = run.median_ms > plan.direct_limit.as_secs_f64() * 1e3;
+                if too_slow || run.median_ms.is_nan() {
+                    stopped = Some(cubes);
+                }
+                runs.push(run);
             }
-            runs.push(run);
+            bar.inc(1);
         }
-        bar.inc(1);
+        if let Some(cubes) = stopped {
+            direct_stopped.push((direct.model, cubes));
+        }
     }
     bar.finish_and_clear();
 
@@ -378,7 +385,7 @@ pub fn run(plan: &Plan, out: &std::path::Path, progress: &Progress) -> Result<Ou
     let series = configs
         .iter()
         .filter(|c| !c.warm_start)
-        .chain([&direct])
+        .chain(&directs)
         .map(|c| Series {
             name: c.label(),
             points: runs
@@ -391,11 +398,7 @@ pub fn run(plan: &Plan, out: &std::path::Path, progress: &Progress) -> Result<Ou
             } else {
                 Stroke::Markers
             },
-            colour: if c.direct {
-                chart::REFERENCE
-            } else {
-                chart::model_colour(c.model)
-            },
+            colour: chart::model_colour(c.model),
         })
         .collect();
     Chart {
@@ -413,7 +416,7 @@ pub fn run(plan: &Plan, out: &std::path::Path, progress: &Progress) -> Result<Ou
     }
     .write(out, "stack_timing")?;
 
-    Ok(report(plan, &runs, direct_stopped))
+    Ok(report(plan, &runs, &direct_stopped))
 }
 
 fn find(runs: &[Run], model: ContactModel, warm_start: bool, cubes: usize) -> Option<&Run> {
@@ -495,7 +498,7 @@ fn verdict(plan: &Plan, runs: &[Run]) -> String {
     text
 }
 
-fn report(plan: &Plan, runs: &[Run], direct_stopped: Option<usize>) -> Outcome {
+fn report(plan: &Plan, runs: &[Run], direct_stopped: &[(ContactModel, usize)]) -> Outcome {
     let mut text = String::new();
     text.push_str(
         "**Paper (fig. 4).** Towers of 2 m boxes, 15 iterations, time of the LCP call: the \
@@ -576,11 +579,15 @@ fn report(plan: &Plan, runs: &[Run], direct_stopped: Option<usize>) -> Outcome {
             if r.stands { "yes" } else { "**no**" },
         ));
     }
-    text.push_str("\nThe direct solver (Lemke on the vertex model, exact to round-off):\n\n");
-    text.push_str("| cubes | rows | steps run | ms per solve (median) | stands | failure |\n|---:|---:|---:|---:|:---:|---|\n");
+    text.push_str(
+        "\nThe direct solver (Lemke, exact to round-off; the circular friction cone as its \
+         inscribed 16-gon), per model:\n\n",
+    );
+    text.push_str("| model | cubes | rows | steps run | ms per solve (median) | stands | failure |\n|---|---:|---:|---:|---:|:---:|---|\n");
     for r in runs.iter().filter(|r| r.config.direct) {
         text.push_str(&format!(
-            "| {} | {} | {} | {:.3} | {} | {} |\n",
+            "| {} | {} | {} | {} | {:.3} | {} | {} |\n",
+            r.config.model.name(),
             r.cubes,
             r.rows,
             r.steps,
@@ -589,10 +596,11 @@ fn report(plan: &Plan, runs: &[Run], direct_stopped: Option<usize>) -> Outcome {
             r.failure.as_deref().unwrap_or("—"),
         ));
     }
-    if let Some(cubes) = direct_stopped {
+    for (model, cubes) in direct_stopped {
         text.push_str(&format!(
-            "\nThe direct solver was not run beyond {cubes} cubes: its median solve passed \
-             {:.0} ms or failed there.\n",
+            "\nThe direct solver ({} model) was not run beyond {cubes} cubes: its median solve \
+             passed {:.0} ms or failed there.\n",
+            model.name(),
             plan.direct_limit.as_secs_f64() * 1e3
         ));
     }
