@@ -122,7 +122,11 @@ fn impulses(problem: &Problem<ContactProjection>) -> Vec<f64> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig {
+        cases: 200,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0xface),
+        ..ProptestConfig::default()
+    })]
 
     #[test]
     fn direct_face_answers_are_admissible_and_match_converged_pgs(case in case()) {

@@ -223,7 +223,8 @@ fn bodies_rest_on_the_largest_ground_allowed() {
 
 /// `--solver direct` on 500 overlapping bodies once allocated a 66 GB matrix and aborted. Now a
 /// direct problem whose dense storage exceeds the 512 MiB budget is refused by the step, naming
-/// its unknowns: here 200 cubes on the floor, 4 box-friction corners each (7 unknowns a corner).
+/// its unknowns: here 200 cubes on the floor, 4 corners each, whose circular friction cone is
+/// the inscribed 16-gon (18 unknowns a corner: the normal, 16 directions, the sliding speed).
 #[test]
 fn a_direct_problem_beyond_the_memory_budget_is_an_error() {
     let cubes: Vec<String> = (0..200)
@@ -246,7 +247,7 @@ fn a_direct_problem_beyond_the_memory_budget_is_an_error() {
     let mut world = scene.world().unwrap();
     let error = world.step(scene.dt).unwrap_err().to_string();
     assert!(
-        error.contains("5600 unknowns") && error.contains("budget"),
+        error.contains("14400 unknowns") && error.contains("budget"),
         "{error}"
     );
 }

