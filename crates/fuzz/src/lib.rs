@@ -16,8 +16,11 @@ pub use geometry::geometry;
 pub use lcp::lcp;
 pub use scene::{load_and_step, scene_loader};
 
+/// A harness: runs one input, panicking only on a broken promise.
+pub type Harness = fn(&[u8]);
+
 /// The harnesses by the name of their fuzz target and corpus folder.
-pub const TARGETS: [(&str, fn(&[u8])); 4] = [
+pub const TARGETS: [(&str, Harness); 4] = [
     ("scene_loader", scene_loader),
     ("load_and_step", load_and_step),
     ("geometry", geometry),

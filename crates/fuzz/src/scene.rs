@@ -120,7 +120,7 @@ fn scene_text(bytes: &mut Bytes) -> String {
     let mut setting = |bytes: &mut Bytes, key: &str, value: &dyn Fn(&mut Bytes) -> String| {
         if bytes.below(4) == 0 {
             let v = value(bytes);
-            let _ = write!(text, "\"{key}\": {v},\n");
+            let _ = writeln!(text, "\"{key}\": {v},");
         }
     };
     let choice = |options: &'static [&'static str]| {
