@@ -53,6 +53,9 @@ pub struct BodyDesc {
     pub shape: Shape,
     /// Fixed bodies never move.
     pub fixed: bool,
+    /// Kinematic bodies move exactly at their velocities, whatever touches them: gravity and
+    /// contacts do not act on them, and they push dynamic bodies as if their mass were infinite.
+    pub kinematic: bool,
     /// Mass or density.
     pub mass: MassSpec,
     /// Principal moments (body axes) about the centre of mass; the solid shape's when `None`.
@@ -80,6 +83,7 @@ impl BodyDesc {
             name: None,
             shape,
             fixed: false,
+            kinematic: false,
             mass: MassSpec::Density(DEFAULT_DENSITY),
             inertia: None,
             position: Point3::origin(),
@@ -96,6 +100,22 @@ impl BodyDesc {
     pub fn fixed(shape: Shape) -> Self {
         Self {
             fixed: true,
+            ..Self::dynamic(shape)
+        }
+    }
+
+    /// A kinematic body: it moves at its `velocity` and `angular_velocity` (or as
+    /// [`World::set_kinematic_target`](crate::World::set_kinematic_target) says), is moved by
+    /// neither gravity nor contacts, and pushes dynamic bodies as if its mass were infinite.
+    ///
+    /// ```
+    /// use tatami_world::{BodyDesc, Shape};
+    /// let paddle = BodyDesc::kinematic(Shape::cuboid([0.2, 2.0, 1.0])).velocity([1.0, 0.0, 0.0]);
+    /// assert!(paddle.kinematic && !paddle.fixed);
+    /// ```
+    pub fn kinematic(shape: Shape) -> Self {
+        Self {
+            kinematic: true,
             ..Self::dynamic(shape)
         }
     }
@@ -164,7 +184,7 @@ impl BodyDesc {
 
     /// Checks the description as [`World::add_body`](crate::World::add_body) would.
     pub fn validate(&self) -> Result<(), WorldError> {
-        Body::new(self.clone(), 0).map(drop)
+        Body::new(self.clone(), BodyId(0), 0).map(drop)
     }
 
     /// Sets the restitution coefficient.
@@ -200,7 +220,8 @@ impl Motion {
 pub struct Body {
     name: String,
     shape: Shape,
-    fixed: bool,
+    id: BodyId,
+    kind: BodyKind,
     mass: f64,
     inertia_local: Matrix3<f64>,
     inv_inertia_local: Matrix3<f64>,
@@ -213,11 +234,39 @@ pub struct Body {
     pub(crate) static_friction: f64,
     pub(crate) kinetic_friction: f64,
     pub(crate) restitution: f64,
+    /// Force (N) and torque about the centre of mass (N m) applied for the next step.
+    pub(crate) force: Vector3<f64>,
+    pub(crate) torque: Vector3<f64>,
+    /// A kinematic body's pose for the end of the next step: centre of mass and orientation.
+    pub(crate) target: Option<(Point3<f64>, UnitQuaternion<f64>)>,
+}
+
+/// How a body moves.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BodyKind {
+    /// Moved by gravity, forces and contacts.
+    Dynamic,
+    /// Never moves.
+    Fixed,
+    /// Moves as prescribed; pushes dynamic bodies as if its mass were infinite.
+    Kinematic,
+}
+
+/// A body's handle in a [`World`](crate::World), returned by
+/// [`World::add_body`](crate::World::add_body): it names the same body for the world's whole
+/// life, through the removal of others, and is never given to another body.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct BodyId(pub(crate) u64);
+
+impl std::fmt::Display for BodyId {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "body {}", self.0)
+    }
 }
 
 impl Body {
-    /// Validates `desc` and builds the body; `index` names unnamed bodies in errors.
-    pub(crate) fn new(desc: BodyDesc, index: usize) -> Result<Self, WorldError> {
+    /// Validates `desc` and builds the body with handle `id`; `index` names unnamed bodies.
+    pub(crate) fn new(desc: BodyDesc, id: BodyId, index: usize) -> Result<Self, WorldError> {
         let name = desc.name.clone().unwrap_or_else(|| format!("#{index}"));
         let fail = |field: &'static str, reason: String| WorldError::InvalidBody {
             body: name.clone(),
@@ -273,6 +322,12 @@ impl Body {
                 ),
             ));
         }
+        if desc.fixed && desc.kinematic {
+            return Err(fail(
+                "kinematic",
+                "a body is fixed or kinematic, not both".into(),
+            ));
+        }
         let e = desc.restitution;
         if !(e.is_finite() && (0.0..=1.0).contains(&e)) {
             return Err(fail("restitution", format!("must be in [0, 1], got {e}")));
@@ -284,7 +339,7 @@ impl Body {
         if !(value.is_finite() && value > 0.0) {
             return Err(fail(field, format!("must be finite and > 0, got {value}")));
         }
-        if !desc.fixed && !MASSES.contains(&mass) {
+        if !desc.fixed && !desc.kinematic && !MASSES.contains(&mass) {
             return Err(fail(
                 field,
                 format!(
@@ -315,10 +370,16 @@ impl Body {
         } else {
             (desc.velocity, desc.angular_velocity)
         };
+        let kind = match (desc.fixed, desc.kinematic) {
+            (true, _) => BodyKind::Fixed,
+            (false, true) => BodyKind::Kinematic,
+            (false, false) => BodyKind::Dynamic,
+        };
         Ok(Self {
             name,
             shape: desc.shape,
-            fixed: desc.fixed,
+            id,
+            kind,
             mass,
             inertia_local,
             inv_inertia_local,
@@ -330,7 +391,30 @@ impl Body {
             static_friction: desc.static_friction,
             kinetic_friction: desc.kinetic_friction,
             restitution: desc.restitution,
+            force: Vector3::zeros(),
+            torque: Vector3::zeros(),
+            target: None,
         })
+    }
+
+    /// The body's handle in its world.
+    pub fn id(&self) -> BodyId {
+        self.id
+    }
+
+    /// How the body moves.
+    pub fn kind(&self) -> BodyKind {
+        self.kind
+    }
+
+    /// Whether gravity, forces and contacts move the body.
+    pub fn is_dynamic(&self) -> bool {
+        self.kind == BodyKind::Dynamic
+    }
+
+    /// Whether the body moves as prescribed.
+    pub fn is_kinematic(&self) -> bool {
+        self.kind == BodyKind::Kinematic
     }
 
     /// Name (from the description, or `#index`).
@@ -345,10 +429,10 @@ impl Body {
 
     /// Whether the body is fixed.
     pub fn is_fixed(&self) -> bool {
-        self.fixed
+        self.kind == BodyKind::Fixed
     }
 
-    /// Mass (kg); a fixed body reports its nominal mass but never moves.
+    /// Mass (kg); a fixed or kinematic body reports its nominal mass, which contacts ignore.
     pub fn mass(&self) -> f64 {
         self.mass
     }
@@ -356,6 +440,11 @@ impl Body {
     /// Position of the body's origin (the shape's frame).
     pub fn position(&self) -> Point3<f64> {
         self.centre - self.rotation * self.com_offset
+    }
+
+    /// Centre of mass in the body frame.
+    pub(crate) fn com_offset(&self) -> Vector3<f64> {
+        self.com_offset
     }
 
     /// Centre of mass (world).
@@ -401,6 +490,19 @@ impl Body {
         correction: Option<&SolverBody>,
         dt: f64,
     ) -> Motion {
+        if self.kind == BodyKind::Kinematic {
+            // As prescribed: a constant twist over the step.
+            let centre = self.centre + self.linear_velocity * dt;
+            let mut rotation =
+                UnitQuaternion::from_scaled_axis(self.angular_velocity * dt) * self.rotation;
+            rotation.renormalize();
+            return Motion {
+                centre,
+                rotation,
+                linear_velocity: self.linear_velocity,
+                angular_velocity: self.angular_velocity,
+            };
+        }
         let mut centre = self.centre + solved.linear_velocity * dt;
         let (mut rotation, angular_velocity) = free_rotation(
             &self.rotation,
@@ -430,10 +532,19 @@ impl Body {
         self.angular_velocity = motion.angular_velocity;
     }
 
-    /// The body as the solver sees it (fixed bodies have zero inverse mass and inertia).
+    /// The body as the solver sees it (fixed and kinematic bodies have zero inverse mass and
+    /// inertia; a kinematic body keeps its velocity).
     pub(crate) fn solver_body(&self) -> SolverBody {
-        if self.fixed {
-            return SolverBody::fixed();
+        match self.kind {
+            BodyKind::Fixed => return SolverBody::fixed(),
+            BodyKind::Kinematic => {
+                return SolverBody {
+                    linear_velocity: self.linear_velocity,
+                    angular_velocity: self.angular_velocity,
+                    ..SolverBody::fixed()
+                };
+            }
+            BodyKind::Dynamic => {}
         }
         let r = self.rotation.to_rotation_matrix();
         SolverBody {

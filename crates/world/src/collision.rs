@@ -57,7 +57,7 @@ pub(crate) fn detect(
     workspace.is_static.clear();
     workspace
         .is_static
-        .extend(bodies.iter().map(Body::is_fixed));
+        .extend(bodies.iter().map(|b| !b.is_dynamic()));
     overlapping_pairs(
         &workspace.boxes,
         &workspace.is_static,

@@ -151,6 +151,25 @@ impl ContactSet {
         }
     }
 
+    /// Forgets body `index` as [`World::remove_body`](crate::World::remove_body) removes it:
+    /// drops its pairs and renumbers the bodies after it, in the pairs' contacts and keys.
+    pub(crate) fn remove_body(&mut self, index: usize) {
+        self.entries
+            .retain(|e| e.contact.body_a.0 != index && e.contact.body_b.0 != index);
+        let renumber = |body: &mut tatami_lcp::BodyId| {
+            if body.0 > index {
+                body.0 -= 1;
+            }
+        };
+        self.index.clear();
+        for (k, e) in self.entries.iter_mut().enumerate() {
+            renumber(&mut e.contact.body_a);
+            renumber(&mut e.contact.body_b);
+            self.index
+                .insert((e.contact.body_a.0, e.contact.body_b.0), k);
+        }
+    }
+
     /// The contacts, in Gauss–Seidel order.
     pub(crate) fn contacts(&self) -> impl ExactSizeIterator<Item = &Contact> + Clone {
         self.entries.iter().map(|e| &e.contact)
@@ -238,7 +257,10 @@ impl ContactSet {
 }
 
 /// The rows of `problem` that `blocks` span.
-fn rows_of<P>(problem: &Problem<P>, blocks: &Range<usize>) -> Range<usize> {
+pub(crate) fn rows_of<P>(problem: &Problem<P>, blocks: &Range<usize>) -> Range<usize> {
+    if blocks.is_empty() {
+        return 0..0;
+    }
     let first = &problem.blocks[blocks.start];
     let last = &problem.blocks[blocks.end - 1];
     first.rows.start..last.rows.end

@@ -23,6 +23,20 @@ pub enum WorldError {
         /// What is wrong with it.
         reason: String,
     },
+    /// No body of the world has this handle (it was removed, or belongs to another world).
+    #[error("no {0} in this world")]
+    UnknownBody(crate::BodyId),
+    /// The body's kind does not allow the action: only dynamic bodies take forces and impulses,
+    /// and a fixed body has no velocity or target.
+    #[error("body `{body}`: a {kind} body cannot {action}")]
+    WrongKind {
+        /// The body's name.
+        body: String,
+        /// `fixed`, `kinematic` or `dynamic`.
+        kind: &'static str,
+        /// What was asked.
+        action: &'static str,
+    },
     /// A world setting is invalid.
     #[error("setting {field}: {reason}")]
     InvalidSettings {

@@ -16,6 +16,7 @@ mod broad_phase;
 mod builder;
 mod collision;
 mod contact_set;
+mod control;
 pub mod dropped;
 mod error;
 mod parry_bridge;
@@ -26,10 +27,11 @@ mod shape;
 mod support;
 mod timings;
 mod world;
+mod wrench;
 
 pub use body::{
-    Body, BodyDesc, DEFAULT_DENSITY, DEFAULT_FRICTION, MASSES, MassSpec, POSITION_LIMIT,
-    SPEED_LIMIT,
+    Body, BodyDesc, BodyId, BodyKind, DEFAULT_DENSITY, DEFAULT_FRICTION, MASSES, MassSpec,
+    POSITION_LIMIT, SPEED_LIMIT,
 };
 pub use builder::{DEFAULT_GRAVITY, GRAVITY_LIMIT, WorldBuilder};
 pub use error::{StepError, WorldError};
@@ -40,3 +42,4 @@ pub use tatami_lcp::direct::DirectParams;
 pub use tatami_lcp::pgs::{PgsParams, WarmStart};
 pub use timings::StepTimings;
 pub use world::{MAX_TIME_STEP, World};
+pub use wrench::ContactWrench;

@@ -5,7 +5,8 @@
 //! `warm_start` (on by default) and `shock_propagation` (off by default), `friction_cone` (`"circle"`,
 //! the isotropic default, or `"box"`, the paper's pyramid), `bias_rate`, `slop`,
 //! `max_depenetration_speed` (m/s, > 0) and `max_velocity_bias` (m/s, ≥ 0; see
-//! [`tatami_contact::ContactSettings`]).
+//! [`tatami_contact::ContactSettings`]). A body may be `"kinematic": true`: it moves at its
+//! `velocity` and `angular_velocity` whatever touches it (see [`BodyDesc::kinematic`]).
 //!
 //! Every number is checked while it is read, so an invalid scene is rejected with the field's
 //! path and the line it is on — unknown fields, unknown shapes, non-finite numbers, sizes, masses
@@ -474,6 +475,8 @@ struct BodyFields {
     shape: RawShape,
     #[serde(default)]
     fixed: bool,
+    #[serde(default)]
+    kinematic: bool,
     #[serde(default, deserialize_with = "present")]
     mass: Option<Positive>,
     #[serde(default, deserialize_with = "present")]
@@ -530,11 +533,9 @@ impl BodyFields {
                     .collect(),
             ),
         };
-        let mut desc = if self.fixed {
-            BodyDesc::fixed(shape)
-        } else {
-            BodyDesc::dynamic(shape)
-        };
+        let mut desc = BodyDesc::dynamic(shape);
+        desc.fixed = self.fixed;
+        desc.kinematic = self.kinematic;
         desc.name = self.name;
         desc.mass = match (self.mass, self.density) {
             (Some(_), Some(_)) => {

@@ -8,13 +8,13 @@ use tatami_contact::{Contact, ContactProjection};
 use tatami_lcp::pgs::{self, PgsParams, PgsWorkspace, Record, WarmStart};
 use tatami_lcp::{LcpError, Problem, direct};
 
-use crate::body::Motion;
+use crate::body::{BodyKind, Motion};
 use crate::collision::{self, BodyGeometry, CollisionWorkspace};
 use crate::contact_set::ContactSet;
 use crate::parry_bridge::Collider;
 use crate::support::Outline;
 use crate::{
-    Body, BodyDesc, Solver, StepError, StepTimings, WorldBuilder, WorldError, WorldSettings,
+    Body, BodyDesc, BodyId, Solver, StepError, StepTimings, WorldBuilder, WorldError, WorldSettings,
 };
 
 /// A rigid-body world.
@@ -36,11 +36,11 @@ use crate::{
 pub struct World {
     pub(crate) gravity: Vector3<f64>,
     pub(crate) settings: WorldSettings,
-    bodies: Vec<Body>,
-    geometry: Vec<BodyGeometry>,
+    pub(crate) bodies: Vec<Body>,
+    pub(crate) geometry: Vec<BodyGeometry>,
     /// Every touching pair and its state across steps, in Gauss–Seidel order.
-    contact_set: ContactSet,
-    problem: Problem<ContactProjection>,
+    pub(crate) contact_set: ContactSet,
+    pub(crate) problem: Problem<ContactProjection>,
     /// The part of each row's penetration push left to the position pass (split impulses).
     biases: Vec<f64>,
     /// Scratch: each moving body's state after the step, checked before it is committed.
@@ -48,7 +48,7 @@ pub struct World {
     /// The position-correction problem of the last step: `problem`'s blocks with the biases as
     /// targets, solved from rest; its bodies' velocities move positions only. Empty on steps
     /// without biases.
-    correction: Problem<ContactProjection>,
+    pub(crate) correction: Problem<ContactProjection>,
     collision_workspace: CollisionWorkspace,
     pgs_workspace: PgsWorkspace,
     timings: StepTimings,
@@ -56,6 +56,10 @@ pub struct World {
     /// Kahan compensation of `time`, so a thousand steps of 0.01 s end at exactly 10 s.
     time_compensation: f64,
     steps: usize,
+    /// The last step's `dt`, which turns its impulses into forces.
+    pub(crate) last_dt: f64,
+    /// The handle the next added body gets.
+    pub(crate) next_id: u64,
 }
 
 impl World {
@@ -81,13 +85,17 @@ impl World {
             time: 0.0,
             time_compensation: 0.0,
             steps: 0,
+            last_dt: 0.0,
+            next_id: 0,
         }
     }
 
-    /// Adds a body; returns its index in [`World::bodies`].
-    pub fn add_body(&mut self, desc: BodyDesc) -> Result<usize, WorldError> {
+    /// Adds a body; returns its handle. It is the last of [`World::bodies`] until others are
+    /// added.
+    pub fn add_body(&mut self, desc: BodyDesc) -> Result<BodyId, WorldError> {
         let index = self.bodies.len();
-        let body = Body::new(desc, index)?;
+        let id = BodyId(self.next_id);
+        let body = Body::new(desc, id, index)?;
         let collider = Collider::new(body.shape()).ok_or_else(|| WorldError::InvalidBody {
             body: body.name().to_owned(),
             field: "shape",
@@ -116,7 +124,8 @@ impl World {
         };
         self.bodies.push(body);
         self.geometry.push(BodyGeometry { collider, outline });
-        Ok(index)
+        self.next_id += 1;
+        Ok(id)
     }
 
     /// The bodies, in the order they were added.
@@ -185,7 +194,7 @@ impl World {
     pub fn total_energy(&self) -> f64 {
         self.bodies
             .iter()
-            .filter(|b| !b.is_fixed())
+            .filter(|b| b.is_dynamic())
             .map(|b| b.kinetic_energy() - b.mass() * self.gravity.dot(&b.centre.coords))
             .sum()
     }
@@ -229,6 +238,7 @@ impl World {
         self.time_compensation = (t - self.time) - y;
         self.time = t;
         self.steps += 1;
+        self.last_dt = dt;
         Ok(())
     }
 
@@ -294,9 +304,22 @@ impl World {
             self.contact_set
                 .set_blocks(index, first..problem.blocks.len());
         }
+        // Gravity's impulse and the applied forces'; a kinematic body's target sets its velocity.
         for (solver_body, body) in problem.bodies.iter_mut().zip(&self.bodies) {
-            if !body.is_fixed() {
-                solver_body.linear_velocity += self.gravity * dt;
+            match body.kind() {
+                BodyKind::Dynamic => {
+                    solver_body.linear_velocity += (self.gravity + body.force / body.mass()) * dt;
+                    solver_body.angular_velocity +=
+                        solver_body.inv_inertia_world * body.torque * dt;
+                }
+                BodyKind::Kinematic => {
+                    if let Some((centre, rotation)) = body.target {
+                        solver_body.linear_velocity = (centre - body.centre) / dt;
+                        solver_body.angular_velocity =
+                            (rotation * body.rotation.inverse()).scaled_axis() / dt;
+                    }
+                }
+                BodyKind::Fixed => {}
             }
         }
         Ok(())
@@ -422,10 +445,20 @@ impl World {
         let corrections = &self.correction.bodies;
         self.motions.clear();
         for (index, (body, solved)) in self.bodies.iter().zip(&self.problem.bodies).enumerate() {
-            if body.is_fixed() {
-                continue;
-            }
-            let motion = body.motion(solved, corrections.get(index), dt);
+            let motion = match body.kind() {
+                BodyKind::Fixed => continue,
+                // Exactly where it was sent, then at rest until told otherwise.
+                BodyKind::Kinematic => match body.target {
+                    Some((centre, rotation)) => Motion {
+                        centre,
+                        rotation,
+                        linear_velocity: Vector3::zeros(),
+                        angular_velocity: Vector3::zeros(),
+                    },
+                    None => body.motion(solved, None, dt),
+                },
+                BodyKind::Dynamic => body.motion(solved, corrections.get(index), dt),
+            };
             if !motion.is_finite() {
                 return Err(StepError::NonFiniteState {
                     body: body.name().to_owned(),
@@ -436,6 +469,11 @@ impl World {
         // Every body's new state is finite: commit them all, and the solve's impulses.
         for (index, motion) in &self.motions {
             self.bodies[*index].set_motion(motion);
+        }
+        for body in &mut self.bodies {
+            body.force = Vector3::zeros();
+            body.torque = Vector3::zeros();
+            body.target = None;
         }
         if let Solver::Pgs(params) = &self.settings.solver
             && params.warm_start == WarmStart::On

@@ -1,0 +1,416 @@
+//! Driving a world: kinematic bodies, forces, torques, impulses, removal and the contact-wrench
+//! read-out, against closed forms. Every scene is turned off the contact frame's axes.
+
+mod common;
+
+use common::{G, rotation};
+use nalgebra::{UnitQuaternion, Vector3};
+use tatami_world::{BodyDesc, BodyKind, ContactModel, Shape, World, WorldError, WorldSettings};
+
+const DT: f64 = 0.01;
+
+/// A 20 m fixed floor whose top is z = 0.
+fn floor() -> BodyDesc {
+    BodyDesc::fixed(Shape::cuboid([20.0, 20.0, 1.0]))
+        .name("floor")
+        .position([0.0, 0.0, -0.5])
+}
+
+/// A unit cube of 1 kg resting on the floor at `(x, y)`, turned by `yaw` degrees.
+fn unit_cube(name: &str, x: f64, y: f64, yaw: f64) -> BodyDesc {
+    BodyDesc::dynamic(Shape::cuboid([1.0; 3]))
+        .name(name)
+        .mass(1.0)
+        .position([x, y, 0.5])
+        .rotation(rotation([0.0, 0.0, 1.0], yaw))
+}
+
+fn steps(world: &mut World, count: usize) {
+    for _ in 0..count {
+        world.step(DT).unwrap();
+    }
+}
+
+/// A kinematic paddle moving at 1 m/s along a diagonal pushes a resting cube ahead of it: the
+/// paddle is exactly where its velocity says (contacts do not move it), and the cube, pushed
+/// from behind, keeps its face against the paddle's at the paddle's speed.
+#[test]
+fn a_kinematic_pusher_pushes_a_resting_cube_ahead_of_it() {
+    let heading = Vector3::new(1.0, 1.0, 0.0).normalize();
+    let yaw = 45.0;
+    let start: Vector3<f64> = heading * -0.65;
+    let mut world = World::builder().build().unwrap();
+    world.add_body(floor()).unwrap();
+    let cube = world.add_body(unit_cube("cube", 0.0, 0.0, yaw)).unwrap();
+    let paddle = world
+        .add_body(
+            BodyDesc::kinematic(Shape::cuboid([0.2, 2.0, 0.9]))
+                .name("paddle")
+                .position([start.x, start.y, 0.5])
+                .rotation(rotation([0.0, 0.0, 1.0], yaw))
+                .velocity(heading.into()),
+        )
+        .unwrap();
+    let seconds = 2.0;
+    steps(&mut world, 200);
+    let paddle_body = world.body_by_id(paddle).unwrap();
+    assert_eq!(paddle_body.kind(), BodyKind::Kinematic);
+    let travelled = paddle_body.position().coords - Vector3::new(start.x, start.y, 0.5);
+    // Exact up to the sum of 200 steps' round-off.
+    assert!(
+        (travelled - heading * seconds).norm() < 1e-12,
+        "{travelled}"
+    );
+    let cube_body = world.body_by_id(cube).unwrap();
+    // Face to face: the paddle's half width plus the cube's, 0.6 m ahead; 1 cm for the
+    // contact's slop and the speculative gap.
+    let ahead = (cube_body.centre_of_mass() - paddle_body.centre_of_mass()).dot(&heading);
+    assert!((ahead - 0.6).abs() < 0.01, "cube {ahead} m ahead");
+    let sideways = (cube_body.centre_of_mass() - paddle_body.centre_of_mass())
+        .xy()
+        .perp(&heading.xy());
+    assert!(sideways.abs() < 1e-3, "pushed straight, {sideways} m aside");
+    let speed = cube_body.linear_velocity().dot(&heading);
+    assert!((speed - 1.0).abs() < 0.02, "cube at {speed} m/s");
+}
+
+/// A constant horizontal force above μmg, along a diagonal, accelerates a cube at
+/// `(F − μmg)/m` along the force (the closed form of Coulomb sliding).
+#[test]
+fn a_force_above_mu_m_g_accelerates_a_cube_at_the_closed_form() {
+    for model in [
+        ContactModel::Face,
+        ContactModel::Patch,
+        ContactModel::Vertex,
+    ] {
+        let settings = WorldSettings {
+            model,
+            ..WorldSettings::default()
+        };
+        let mut world = World::builder().settings(settings).build().unwrap();
+        world.add_body(floor()).unwrap();
+        let mass = 2.0;
+        let cube = world
+            .add_body(unit_cube("cube", 0.0, 0.0, 30.0).mass(mass))
+            .unwrap();
+        steps(&mut world, 20);
+        let direction = Vector3::new(3.0_f64.sqrt(), 1.0, 0.0) / 2.0;
+        let force = 2.0 * 0.5 * mass * G;
+        let v0 = world.body_by_id(cube).unwrap().linear_velocity();
+        let seconds = 1.0;
+        for _ in 0..100 {
+            world.apply_force(cube, direction * force).unwrap();
+            world.step(DT).unwrap();
+        }
+        let dv = world.body_by_id(cube).unwrap().linear_velocity() - v0;
+        let expected = (force - 0.5 * mass * G) / mass * seconds;
+        // The first step turns static friction into kinetic: a step of slack, 1%.
+        let along = dv.dot(&direction);
+        assert!(
+            (along - expected).abs() < 0.01 * expected,
+            "{model:?}: Δv {along} m/s, closed form {expected}"
+        );
+        let across = (dv - direction * along).norm();
+        assert!(across < 1e-6 * expected, "{model:?}: bent by {across} m/s");
+    }
+}
+
+/// A torque about a principal axis of a free, turned box spins it at `τ t / I` about that
+/// axis (no gyroscopic term while ω stays on the axis).
+#[test]
+fn a_torque_spins_a_free_body_at_tau_over_i() {
+    let turn = rotation([1.0, 2.0, 3.0], 40.0);
+    let size = [1.0, 2.0, 3.0];
+    let mass = 3.0;
+    let mut world = World::builder().gravity([0.0; 3]).build().unwrap();
+    let body = world
+        .add_body(
+            BodyDesc::dynamic(Shape::cuboid(size))
+                .mass(mass)
+                .rotation(turn),
+        )
+        .unwrap();
+    // The box's moment about its body y axis: m (a² + c²) / 12.
+    let inertia = mass * (size[0] * size[0] + size[2] * size[2]) / 12.0;
+    let axis = turn * Vector3::y();
+    let torque = 0.7;
+    let count = 150;
+    for _ in 0..count {
+        world.apply_torque(body, axis * torque).unwrap();
+        world.step(DT).unwrap();
+    }
+    let w = world.body_by_id(body).unwrap().angular_velocity();
+    let expected = torque * count as f64 * DT / inertia;
+    assert!(
+        (w - axis * expected).norm() < 1e-9 * expected,
+        "ω {w}, closed form {expected} about {axis}"
+    );
+    // And a force at a point: the force's moment about the centre of mass turns the box too.
+    let before = world.body_by_id(body).unwrap().angular_velocity();
+    let centre = world.body_by_id(body).unwrap().centre_of_mass();
+    let arm = turn * Vector3::new(0.0, 0.0, 1.0);
+    let push = turn * Vector3::new(0.4, 0.0, 0.0);
+    world
+        .apply_force_at_point(body, push, centre + arm)
+        .unwrap();
+    world.step(DT).unwrap();
+    let dw = world.body_by_id(body).unwrap().angular_velocity() - before;
+    // r × F = z × 0.4 x = 0.4 y (body axes): about the same principal axis.
+    let expected = 0.4 * DT / inertia;
+    assert!((dw - axis * expected).norm() < 1e-9 * expected, "Δω {dw}");
+}
+
+/// An impulse changes a free body's velocity by `J/m` at once; at a point off the centre it
+/// also turns it by `I⁻¹ (r × J)`.
+#[test]
+fn an_impulse_changes_the_velocity_at_once() {
+    let mut world = World::builder().gravity([0.0; 3]).build().unwrap();
+    let ball = world
+        .add_body(BodyDesc::dynamic(Shape::sphere(0.5)).mass(2.0))
+        .unwrap();
+    world.apply_impulse(ball, [1.0, -2.0, 0.5]).unwrap();
+    let v = world.body_by_id(ball).unwrap().linear_velocity();
+    assert!((v - Vector3::new(0.5, -1.0, 0.25)).norm() < 1e-15);
+    world
+        .apply_impulse_at_point(ball, [0.0, 1.0, 0.0], [0.5, 0.0, 0.0])
+        .unwrap();
+    // I = 2/5 m r² = 0.2; r × J = (0.5, 0, 0) × (0, 1, 0) = (0, 0, 0.5).
+    let w = world.body_by_id(ball).unwrap().angular_velocity();
+    assert!((w - Vector3::new(0.0, 0.0, 2.5)).norm() < 1e-12, "{w}");
+}
+
+/// The force sensor: a cube resting off-centre, turned, on a larger dynamic box that rests on
+/// the floor. The cube's contact carries its weight through a centre of pressure under its
+/// centre of mass; the box's carries both weights through a point under their common centre
+/// of mass — for every model, within 1e-6 (the warm-started solver at rest converges far
+/// below that).
+#[test]
+fn the_wrench_read_out_balances_the_weights_at_the_centres_of_mass() {
+    for model in [
+        ContactModel::Face,
+        ContactModel::Patch,
+        ContactModel::Vertex,
+    ] {
+        let settings = WorldSettings {
+            model,
+            ..WorldSettings::default()
+        };
+        let mut world = World::builder().settings(settings).build().unwrap();
+        let floor = world.add_body(floor()).unwrap();
+        let (big_mass, small_mass) = (5.0, 1.5);
+        let slab = world
+            .add_body(
+                BodyDesc::dynamic(Shape::cuboid([3.0, 2.5, 0.5]))
+                    .name("slab")
+                    .mass(big_mass)
+                    .position([0.3, -0.2, 0.25])
+                    .rotation(rotation([0.0, 0.0, 1.0], 20.0)),
+            )
+            .unwrap();
+        let cube = world
+            .add_body(
+                BodyDesc::dynamic(Shape::cuboid([0.6, 0.6, 0.6]))
+                    .name("cube")
+                    .mass(small_mass)
+                    .position([1.0, 0.3, 0.8])
+                    .rotation(rotation([0.0, 0.0, 1.0], -35.0)),
+            )
+            .unwrap();
+        steps(&mut world, 300);
+        let wrenches: Vec<_> = world.contact_wrenches().collect();
+        assert_eq!(wrenches.len(), 2, "{model:?}");
+        let centre = |id| world.body_by_id(id).unwrap().centre_of_mass();
+        for w in &wrenches {
+            let mut pair = [w.body_a, w.body_b];
+            pair.sort();
+            let (weight, under) = if pair == [slab, cube] {
+                (small_mass * G, centre(cube).coords.xy())
+            } else {
+                assert_eq!(pair, [floor, slab], "{model:?}");
+                let both = (centre(cube).coords * small_mass + centre(slab).coords * big_mass)
+                    / (small_mass + big_mass);
+                ((small_mass + big_mass) * G, both.xy())
+            };
+            assert!(
+                (w.normal_force - weight).abs() < 1e-6 * weight,
+                "{model:?}: normal force {} N, weight {weight} N",
+                w.normal_force
+            );
+            let miss = (w.centre_of_pressure.coords.xy() - under).norm();
+            assert!(miss < 1e-6, "{model:?}: centre of pressure {miss} m off");
+            assert!(
+                w.force.xy().norm() < 1e-6 * weight,
+                "{model:?}: {}",
+                w.force
+            );
+            assert!(w.torque.norm() < 1e-6 * weight, "{model:?}: {}", w.torque);
+            assert_eq!(w.support.len(), 4, "{model:?}: a square face on a face");
+            assert!(w.normal.z.abs() > 1.0 - 1e-12, "{model:?}: {}", w.normal);
+        }
+    }
+}
+
+/// Removing the middle cube of a stack of three mid-run: no contact names it or outlives it,
+/// the handles of the others still work, and the top cube lands on the bottom one.
+#[test]
+fn removing_a_body_leaves_no_stale_contact() {
+    let mut world = World::builder().build().unwrap();
+    let floor = world.add_body(floor()).unwrap();
+    let ids: Vec<_> = (0..3)
+        .map(|k| {
+            let desc = unit_cube(&format!("c{k}"), 0.1 * k as f64, 0.0, 10.0 * k as f64)
+                .position([0.1 * k as f64, 0.0, 0.5 + k as f64]);
+            world.add_body(desc).unwrap()
+        })
+        .collect();
+    steps(&mut world, 50);
+    assert_eq!(world.contacts().count(), 3);
+    let removed = world.remove_body(ids[1]).unwrap();
+    assert_eq!(removed.name(), "c1");
+    assert_eq!(world.bodies().len(), 3);
+    assert_eq!(world.index_of(ids[1]), Err(WorldError::UnknownBody(ids[1])));
+    assert_eq!(world.index_of(ids[2]), Ok(2));
+    let named = |world: &World| -> Vec<_> {
+        world
+            .contact_wrenches()
+            .map(|w| (w.body_a.min(w.body_b), w.body_a.max(w.body_b)))
+            .collect()
+    };
+    assert_eq!(
+        named(&world),
+        vec![(floor, ids[0])],
+        "only floor–c0 is left"
+    );
+    assert!(world.apply_force(ids[1], [1.0, 0.0, 0.0]).is_err());
+    steps(&mut world, 100);
+    let mut pairs = named(&world);
+    pairs.sort();
+    assert_eq!(pairs, vec![(floor, ids[0]), (ids[0], ids[2])]);
+    let top = world.body_by_id(ids[2]).unwrap().position();
+    assert!(
+        (top.z - 1.5).abs() < 0.01,
+        "top cube on the bottom one: z = {}",
+        top.z
+    );
+}
+
+/// A kinematic target moves a body exactly there over one step, pushing what is in the way;
+/// afterwards the body rests.
+#[test]
+fn a_kinematic_target_is_reached_in_one_step() {
+    let mut world = World::builder().build().unwrap();
+    world.add_body(floor()).unwrap();
+    let hand = world
+        .add_body(BodyDesc::kinematic(Shape::cuboid([0.4, 0.4, 0.4])).position([0.0, 0.0, 2.0]))
+        .unwrap();
+    let turn = rotation([0.0, 0.0, 1.0], 5.0);
+    for k in 1..=20 {
+        let target = [0.01 * k as f64, 0.0, 2.0];
+        let heading =
+            UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 0.0) * turn.powf(k as f64);
+        world.set_kinematic_target(hand, target, heading).unwrap();
+        world.step(DT).unwrap();
+        let body = world.body_by_id(hand).unwrap();
+        assert!((body.position() - nalgebra::Point3::from(target)).norm() < 1e-12);
+        assert!(body.rotation().angle_to(&heading) < 1e-12);
+    }
+    world.step(DT).unwrap();
+    let body = world.body_by_id(hand).unwrap();
+    assert_eq!(
+        body.linear_velocity(),
+        Vector3::zeros(),
+        "at rest after its target"
+    );
+    assert!((body.position().x - 0.2).abs() < 1e-12);
+}
+
+/// A moving kinematic platform carries a box resting on it: static friction moves the box with
+/// it, without slipping.
+#[test]
+fn a_moving_platform_carries_a_box() {
+    let velocity = Vector3::new(0.4, -0.3, 0.0);
+    let mut world = World::builder().build().unwrap();
+    let platform = world
+        .add_body(
+            BodyDesc::kinematic(Shape::cuboid([3.0, 3.0, 0.2]))
+                .name("platform")
+                .velocity(velocity.into()),
+        )
+        .unwrap();
+    let cube = world
+        .add_body(
+            unit_cube("cube", 0.2, 0.1, 25.0)
+                .position([0.2, 0.1, 0.6])
+                .velocity(velocity.into()),
+        )
+        .unwrap();
+    let offset = |world: &World| {
+        world.body_by_id(cube).unwrap().position() - world.body_by_id(platform).unwrap().position()
+    };
+    steps(&mut world, 100);
+    let start = offset(&world);
+    steps(&mut world, 200);
+    let slip = (offset(&world) - start).norm();
+    assert!(slip < 1e-3, "the box slipped {slip} m on the platform");
+    let v = world.body_by_id(cube).unwrap().linear_velocity();
+    assert!((v - velocity).norm() < 1e-3, "box at {v}");
+}
+
+/// Every control call checks its body and its values: no NaN, no stale handle, no force on a
+/// body that cannot take one, reaches a step.
+#[test]
+fn control_calls_reject_bad_input() {
+    let mut world = World::builder().build().unwrap();
+    let floor = world.add_body(floor()).unwrap();
+    let paddle = world
+        .add_body(BodyDesc::kinematic(Shape::sphere(0.1)).position([0.0, 0.0, 3.0]))
+        .unwrap();
+    let ball = world
+        .add_body(BodyDesc::dynamic(Shape::sphere(0.2)).position([0.0, 0.0, 1.0]))
+        .unwrap();
+    let kind = |e: WorldError| matches!(e, WorldError::WrongKind { .. });
+    let value = |e: WorldError| matches!(e, WorldError::InvalidBody { .. });
+    assert!(kind(world.apply_force(floor, [1.0, 0.0, 0.0]).unwrap_err()));
+    assert!(kind(
+        world.apply_impulse(paddle, [1.0, 0.0, 0.0]).unwrap_err()
+    ));
+    assert!(kind(
+        world.set_velocity(floor, [1.0, 0.0, 0.0]).unwrap_err()
+    ));
+    assert!(kind(
+        world
+            .set_kinematic_target(ball, [0.0; 3], UnitQuaternion::identity())
+            .unwrap_err()
+    ));
+    assert!(value(
+        world.apply_force(ball, [f64::NAN, 0.0, 0.0]).unwrap_err()
+    ));
+    assert!(value(
+        world
+            .apply_torque(ball, [f64::INFINITY, 0.0, 0.0])
+            .unwrap_err()
+    ));
+    assert!(value(
+        world.set_velocity(paddle, [1e9, 0.0, 0.0]).unwrap_err()
+    ));
+    assert!(value(
+        world.set_position(ball, [1e9, 0.0, 0.0]).unwrap_err()
+    ));
+    assert!(value(
+        world.apply_impulse(ball, [1e12, 0.0, 0.0]).unwrap_err()
+    ));
+    world.remove_body(ball).unwrap();
+    assert_eq!(
+        world.set_velocity(ball, [0.0; 3]),
+        Err(WorldError::UnknownBody(ball))
+    );
+    assert!(world.remove_body(ball).is_err());
+    // Nothing rejected reached the state.
+    world.step(DT).unwrap();
+    assert!(
+        world
+            .bodies()
+            .iter()
+            .all(|b| b.linear_velocity().iter().all(|x| x.is_finite()))
+    );
+}
