@@ -8,13 +8,30 @@ use std::time::{Duration, Instant};
 use tatami_world::scene::{MAX_STEPS, Scene};
 use tatami_world::{ContactModel, DirectParams, Solver};
 
+use crate::contacts::ContactWriter;
 use crate::trajectory::TrajectoryWriter;
 
-/// Options of `cargo xtask simulate`. Each overrides the scene's value.
+/// Options of `cargo xtask simulate`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// The scene file (JSON).
     scene: PathBuf,
+    #[command(flatten)]
+    overrides: Overrides,
+    /// Record every K-th step (step 0 and the last step are always recorded).
+    #[arg(long, default_value_t = 1)]
+    every: usize,
+    /// Trajectory file; standard output without it.
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Also write every recorded step's contact wrenches to this CSV file.
+    #[arg(long)]
+    contacts: Option<PathBuf>,
+}
+
+/// Options that override the scene's values.
+#[derive(Debug, clap::Args)]
+pub struct Overrides {
     /// Contact model.
     #[arg(long, value_parser = parse_model)]
     model: Option<ContactModel>,
@@ -30,12 +47,6 @@ pub struct Args {
     /// Solver: pgs or direct.
     #[arg(long, value_parser = ["pgs", "direct"])]
     solver: Option<String>,
-    /// Record every K-th step (step 0 and the last step are always recorded).
-    #[arg(long, default_value_t = 1)]
-    every: usize,
-    /// Trajectory file; standard output without it.
-    #[arg(long)]
-    out: Option<PathBuf>,
 }
 
 fn parse_model(name: &str) -> Result<ContactModel, String> {
@@ -48,17 +59,18 @@ fn parse_model(name: &str) -> Result<ContactModel, String> {
     })
 }
 
-/// Runs the scene and writes the trajectory.
-pub fn run(args: &Args) -> Result<(), String> {
-    let mut scene = Scene::load(&args.scene).map_err(|e| e.to_string())?;
-    apply_overrides(&mut scene, args)?;
+/// Loads the scene at `path` with the command line's `overrides`; with the direct solver, says
+/// in one line on standard error which PGS settings it ignores.
+pub fn load(path: &std::path::Path, overrides: &Overrides) -> Result<Scene, String> {
+    let mut scene = Scene::load(path).map_err(|e| e.to_string())?;
+    overrides.apply(&mut scene)?;
     if matches!(scene.settings.solver, Solver::Direct(_)) {
         let mut ignored: Vec<String> = scene
             .pgs_settings
             .iter()
             .map(|s| format!("`{s}`"))
             .collect();
-        if args.iterations.is_some() {
+        if overrides.iterations.is_some() {
             ignored.push("--iterations".into());
         }
         if !ignored.is_empty() {
@@ -68,6 +80,15 @@ pub fn run(args: &Args) -> Result<(), String> {
             );
         }
     }
+    Ok(scene)
+}
+
+/// Runs the scene and writes the trajectory.
+pub fn run(args: &Args) -> Result<(), String> {
+    if args.every == 0 {
+        return Err("--every must be ≥ 1".into());
+    }
+    let scene = load(&args.scene, &args.overrides)?;
     let mut world = scene.world().map_err(|e| e.to_string())?;
     let output: Box<dyn Write> = match &args.out {
         Some(path) => Box::new(BufWriter::new(
@@ -77,6 +98,15 @@ pub fn run(args: &Args) -> Result<(), String> {
     };
     let mut writer = TrajectoryWriter::new(output).map_err(|e| e.to_string())?;
     writer.record(0, &world).map_err(|e| e.to_string())?;
+    let mut contacts = match &args.contacts {
+        Some(path) => Some(
+            ContactWriter::new(BufWriter::new(
+                File::create(path).map_err(|e| format!("{}: {e}", path.display()))?,
+            ))
+            .map_err(|e| e.to_string())?,
+        ),
+        None => None,
+    };
     let mut solver_time = Duration::ZERO;
     let start = Instant::now();
     for step in 1..=scene.steps {
@@ -86,10 +116,16 @@ pub fn run(args: &Args) -> Result<(), String> {
         solver_time += world.timings().solve;
         if step % args.every == 0 || step == scene.steps {
             writer.record(step, &world).map_err(|e| e.to_string())?;
+            if let Some(contacts) = &mut contacts {
+                contacts.record(step, &world).map_err(|e| e.to_string())?;
+            }
         }
     }
     let wall = start.elapsed();
     writer.finish().map_err(|e| e.to_string())?;
+    if let Some(contacts) = contacts {
+        contacts.finish().map_err(|e| e.to_string())?;
+    }
     let per_step = |d: Duration| d.as_secs_f64() * 1e3 / scene.steps.max(1) as f64;
     eprintln!(
         "{} steps of {} bodies ({} model): {:.4} ms/step wall, {:.4} ms/step in the solver",
@@ -102,40 +138,40 @@ pub fn run(args: &Args) -> Result<(), String> {
     Ok(())
 }
 
-/// Command-line values replace the scene's.
-fn apply_overrides(scene: &mut Scene, args: &Args) -> Result<(), String> {
-    if args.every == 0 {
-        return Err("--every must be ≥ 1".into());
-    }
-    if let Some(dt) = args.dt {
-        if !(dt.is_finite() && dt > 0.0 && dt <= tatami_world::MAX_TIME_STEP) {
-            return Err(format!("--dt must be > 0 and at most 1 s, got {dt}"));
+impl Overrides {
+    /// Command-line values replace the scene's.
+    fn apply(&self, scene: &mut Scene) -> Result<(), String> {
+        let args = self;
+        if let Some(dt) = args.dt {
+            if !(dt.is_finite() && dt > 0.0 && dt <= tatami_world::MAX_TIME_STEP) {
+                return Err(format!("--dt must be > 0 and at most 1 s, got {dt}"));
+            }
+            scene.dt = dt;
         }
-        scene.dt = dt;
-    }
-    if let Some(steps) = args.steps {
-        if !(1..=MAX_STEPS).contains(&steps) {
-            return Err(format!("--steps must be 1 to {MAX_STEPS}, got {steps}"));
+        if let Some(steps) = args.steps {
+            if !(1..=MAX_STEPS).contains(&steps) {
+                return Err(format!("--steps must be 1 to {MAX_STEPS}, got {steps}"));
+            }
+            scene.steps = steps;
         }
-        scene.steps = steps;
-    }
-    if let Some(model) = args.model {
-        scene.settings.model = model;
-    }
-    match args.solver.as_deref() {
-        Some("direct") => scene.settings.solver = Solver::Direct(DirectParams::default()),
-        Some(_) if !matches!(scene.settings.solver, Solver::Pgs(_)) => {
-            scene.settings.solver = Solver::default();
+        if let Some(model) = args.model {
+            scene.settings.model = model;
         }
-        _ => {}
-    }
-    if let Some(iterations) = args.iterations {
-        if iterations == 0 {
-            return Err("--iterations must be ≥ 1".into());
+        match args.solver.as_deref() {
+            Some("direct") => scene.settings.solver = Solver::Direct(DirectParams::default()),
+            Some(_) if !matches!(scene.settings.solver, Solver::Pgs(_)) => {
+                scene.settings.solver = Solver::default();
+            }
+            _ => {}
         }
-        if let Solver::Pgs(params) = &mut scene.settings.solver {
-            params.iterations = iterations;
+        if let Some(iterations) = args.iterations {
+            if iterations == 0 {
+                return Err("--iterations must be ≥ 1".into());
+            }
+            if let Solver::Pgs(params) = &mut scene.settings.solver {
+                params.iterations = iterations;
+            }
         }
+        Ok(())
     }
-    Ok(())
 }

@@ -135,12 +135,22 @@ fn glam_points(points: &[Point3<f64>]) -> Vec<Vector> {
     points.iter().map(|p| to_glam(&p.coords)).collect()
 }
 
-/// The convex hull of `points`, checked: every point on the inner side of every face.
+/// The convex hull of `points` as a collider (see [`hull_mesh`]).
+pub(crate) fn hull(points: &[Point3<f64>]) -> Option<ConvexPolyhedron> {
+    let (vertices, triangles) = hull_mesh(points)?;
+    ConvexPolyhedron::from_convex_mesh(
+        vertices.iter().map(|p| to_glam(&p.coords)).collect(),
+        &triangles,
+    )
+}
+
+/// The convex hull of `points`, its triangles wound outwards, checked: every point on the inner
+/// side of every face.
 ///
 /// parry's hull of exactly four points is sometimes flat (two triangles) or turned inside out —
 /// about 1 in 400 random tetrahedra — so a tetrahedron is built from its four faces directly,
 /// wound outwards. A hull that fails the check is `None` rather than a wrong collider.
-pub(crate) fn hull(points: &[Point3<f64>]) -> Option<ConvexPolyhedron> {
+pub(crate) fn hull_mesh(points: &[Point3<f64>]) -> Option<(Vec<Point3<f64>>, Vec<[u32; 3]>)> {
     let (vertices, triangles) = match points {
         [a, b, c, d] => {
             // Wind the faces outwards: (b − a) × (c − a) points away from d when the signed
@@ -171,7 +181,10 @@ pub(crate) fn hull(points: &[Point3<f64>]) -> Option<ConvexPolyhedron> {
                     .iter()
                     .all(|p| normal.dot(&(p.coords - corner(i))) <= tolerance * length)
         });
-    inside.then(|| ConvexPolyhedron::from_convex_mesh(vertices, &triangles))?
+    inside.then(|| {
+        let vertices = vertices.iter().map(|v| from_glam(*v).into()).collect();
+        (vertices, triangles)
+    })
 }
 
 /// Volume, centroid and unit-mass inertia of the hull of `points`; `None` without volume.

@@ -75,6 +75,25 @@ impl Shape {
         Self::Convex { points }
     }
 
+    /// The hull of a [`Shape::Convex`] as triangles wound outwards (body frame), for drawing or
+    /// export: its vertices and each triangle's three indices into them. `None` for the other
+    /// shapes and for points without volume.
+    ///
+    /// ```
+    /// use nalgebra::Point3;
+    /// use tatami_world::Shape;
+    /// let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    /// let tetrahedron = Shape::convex(corners.iter().map(|&p| Point3::from(p)).collect());
+    /// let (vertices, triangles) = tetrahedron.hull_mesh().unwrap();
+    /// assert_eq!((vertices.len(), triangles.len()), (4, 4));
+    /// ```
+    pub fn hull_mesh(&self) -> Option<(Vec<Point3<f64>>, Vec<[u32; 3]>)> {
+        match self {
+            Self::Convex { points } => crate::parry_bridge::hull_mesh(points),
+            _ => None,
+        }
+    }
+
     /// Mass properties of the solid shape, or why the shape is invalid (a length outside
     /// [`LENGTHS`], a hull without volume).
     pub fn mass_properties(&self) -> Result<MassProperties, WorldError> {
