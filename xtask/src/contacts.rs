@@ -88,3 +88,50 @@ impl<W: Write> ContactWriter<W> {
         self.csv.flush()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tatami_world::{BodyDesc, Shape};
+
+    /// A cube resting off-centre on a floor: after the header, one row naming both bodies, with
+    /// the cube's weight as the normal force and the centre of pressure under its centre.
+    #[test]
+    fn a_resting_cube_writes_its_weight_under_its_centre() {
+        let mut world = World::builder()
+            .body(
+                BodyDesc::fixed(Shape::cuboid([4.0, 4.0, 1.0]))
+                    .name("floor")
+                    .position([0.0, 0.0, -0.5]),
+            )
+            .body(
+                BodyDesc::dynamic(Shape::cuboid([0.5; 3]))
+                    .name("cube")
+                    .mass(3.0)
+                    .position([0.7, -0.3, 0.25]),
+            )
+            .build()
+            .unwrap();
+        for _ in 0..100 {
+            world.step(0.01).unwrap();
+        }
+        let mut writer = ContactWriter::new(Vec::new()).unwrap();
+        writer.record(100, &world).unwrap();
+        let bytes = writer.csv.into_inner().unwrap();
+        let mut reader = csv::Reader::from_reader(bytes.as_slice());
+        assert!(reader.headers().unwrap().iter().eq(HEADER));
+        let rows: Vec<_> = reader.records().map(Result::unwrap).collect();
+        assert_eq!(rows.len(), 1);
+        let row = &rows[0];
+        assert_eq!(
+            (&row[0], &row[2], &row[3], &row[4]),
+            ("100", "floor", "cube", "face")
+        );
+        let number = |k: usize| row[k].parse::<f64>().unwrap();
+        // Converged at rest to far below these bounds (see the world's control tests).
+        assert!((number(5) - 3.0 * 9.8).abs() < 1e-6);
+        assert!((number(9) - 0.7).abs() < 1e-6 && (number(10) + 0.3).abs() < 1e-6);
+        assert!(number(11).abs() < 1e-9, "on the floor's top");
+        assert_eq!(&row[15], "4");
+    }
+}

@@ -36,7 +36,7 @@ pub use body::{
 pub use builder::{DEFAULT_GRAVITY, GRAVITY_LIMIT, WorldBuilder};
 pub use error::{StepError, WorldError};
 pub use settings::{MAX_ITERATIONS, Solver, WorldSettings};
-pub use shape::{LENGTHS, MassProperties, Shape};
+pub use shape::{HullMesh, LENGTHS, MassProperties, Shape};
 pub use tatami_contact::{ContactModel, ContactProjection, ContactSettings, FrictionCone};
 pub use tatami_lcp::direct::DirectParams;
 pub use tatami_lcp::pgs::{PgsParams, WarmStart};

@@ -10,6 +10,7 @@ use parry3d_f64::math::{Pose, Rotation, Vector};
 use parry3d_f64::query::{ContactManifold, DefaultQueryDispatcher, PersistentQueryDispatcher, sat};
 use parry3d_f64::shape::{ConvexPolyhedron, Cuboid, SharedShape};
 
+use crate::HullMesh;
 use crate::shape::{MassProperties, Shape};
 
 fn to_glam(v: &Vector3<f64>) -> Vector {
@@ -137,10 +138,10 @@ fn glam_points(points: &[Point3<f64>]) -> Vec<Vector> {
 
 /// The convex hull of `points` as a collider (see [`hull_mesh`]).
 pub(crate) fn hull(points: &[Point3<f64>]) -> Option<ConvexPolyhedron> {
-    let (vertices, triangles) = hull_mesh(points)?;
+    let mesh = hull_mesh(points)?;
     ConvexPolyhedron::from_convex_mesh(
-        vertices.iter().map(|p| to_glam(&p.coords)).collect(),
-        &triangles,
+        mesh.vertices.iter().map(|p| to_glam(&p.coords)).collect(),
+        &mesh.triangles,
     )
 }
 
@@ -150,7 +151,7 @@ pub(crate) fn hull(points: &[Point3<f64>]) -> Option<ConvexPolyhedron> {
 /// parry's hull of exactly four points is sometimes flat (two triangles) or turned inside out —
 /// about 1 in 400 random tetrahedra — so a tetrahedron is built from its four faces directly,
 /// wound outwards. A hull that fails the check is `None` rather than a wrong collider.
-pub(crate) fn hull_mesh(points: &[Point3<f64>]) -> Option<(Vec<Point3<f64>>, Vec<[u32; 3]>)> {
+pub(crate) fn hull_mesh(points: &[Point3<f64>]) -> Option<HullMesh> {
     let (vertices, triangles) = match points {
         [a, b, c, d] => {
             // Wind the faces outwards: (b − a) × (c − a) points away from d when the signed
@@ -183,7 +184,10 @@ pub(crate) fn hull_mesh(points: &[Point3<f64>]) -> Option<(Vec<Point3<f64>>, Vec
         });
     inside.then(|| {
         let vertices = vertices.iter().map(|v| from_glam(*v).into()).collect();
-        (vertices, triangles)
+        HullMesh {
+            vertices,
+            triangles,
+        }
     })
 }
 

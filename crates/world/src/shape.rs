@@ -38,6 +38,15 @@ pub enum Shape {
     },
 }
 
+/// A convex hull as a triangle mesh (body frame).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct HullMesh {
+    /// The hull's vertices.
+    pub vertices: Vec<Point3<f64>>,
+    /// Each triangle's three indices into `vertices`, counter-clockwise seen from outside.
+    pub triangles: Vec<[u32; 3]>,
+}
+
 /// Volume, centre of mass and inertia of a solid shape of unit mass.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MassProperties {
@@ -76,18 +85,17 @@ impl Shape {
     }
 
     /// The hull of a [`Shape::Convex`] as triangles wound outwards (body frame), for drawing or
-    /// export: its vertices and each triangle's three indices into them. `None` for the other
-    /// shapes and for points without volume.
+    /// export. `None` for the other shapes and for points without volume.
     ///
     /// ```
     /// use nalgebra::Point3;
     /// use tatami_world::Shape;
     /// let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     /// let tetrahedron = Shape::convex(corners.iter().map(|&p| Point3::from(p)).collect());
-    /// let (vertices, triangles) = tetrahedron.hull_mesh().unwrap();
-    /// assert_eq!((vertices.len(), triangles.len()), (4, 4));
+    /// let hull = tetrahedron.hull_mesh().unwrap();
+    /// assert_eq!((hull.vertices.len(), hull.triangles.len()), (4, 4));
     /// ```
-    pub fn hull_mesh(&self) -> Option<(Vec<Point3<f64>>, Vec<[u32; 3]>)> {
+    pub fn hull_mesh(&self) -> Option<HullMesh> {
         match self {
             Self::Convex { points } => crate::parry_bridge::hull_mesh(points),
             _ => None,

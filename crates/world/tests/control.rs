@@ -414,3 +414,70 @@ fn control_calls_reject_bad_input() {
             .all(|b| b.linear_velocity().iter().all(|x| x.is_finite()))
     );
 }
+
+fn example(name: &str) -> tatami_world::scene::Scene {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../scenes")
+        .join(name);
+    tatami_world::scene::Scene::load(&path).unwrap()
+}
+
+/// `scenes/paddle_sweep.json`: the turning kinematic paddle ends exactly where its velocities
+/// take it, and has swept every box of the row ahead of its face.
+#[test]
+fn the_paddle_scene_sweeps_every_box_ahead() {
+    let scene = example("paddle_sweep.json");
+    let mut world = scene.world().unwrap();
+    for _ in 0..scene.steps {
+        world.step(scene.dt).unwrap();
+    }
+    let paddle = world.body("paddle").unwrap();
+    let seconds = scene.steps as f64 * scene.dt;
+    let start = nalgebra::Point3::new(-2.0, 0.0, 0.55);
+    assert!((paddle.position() - (start + Vector3::x() * 1.2 * seconds)).norm() < 1e-9);
+    let face = paddle.rotation() * Vector3::x();
+    for k in 1..=5 {
+        let cube = world.body(&format!("box {k}")).unwrap();
+        let ahead = (cube.centre_of_mass() - paddle.centre_of_mass()).dot(&face);
+        assert!(
+            ahead > 0.15 + 0.3 - 0.01,
+            "box {k} is {ahead} m ahead of the paddle"
+        );
+    }
+}
+
+/// `scenes/moving_platform.json`: the box dropped on the moving platform rides it — at the end
+/// it is on top of it, moving with it.
+#[test]
+fn the_platform_scene_carries_the_box() {
+    let scene = example("moving_platform.json");
+    let mut world = scene.world().unwrap();
+    for _ in 0..scene.steps {
+        world.step(scene.dt).unwrap();
+    }
+    let platform = world.body("platform").unwrap();
+    let cube = world.body("box").unwrap();
+    let offset = cube.position() - platform.position();
+    assert!((offset.z - 0.5).abs() < 0.01, "on top: {offset}");
+    assert!(
+        offset.xy().abs().max() < 1.5,
+        "within the platform: {offset}"
+    );
+    let v = cube.linear_velocity() - platform.linear_velocity();
+    assert!(v.norm() < 1e-3, "moving with it: {v}");
+}
+
+/// A body is fixed or kinematic, not both; `kinematic` is read from scenes.
+#[test]
+fn a_scene_body_is_fixed_or_kinematic_not_both() {
+    let body = |extra: &str| {
+        format!(r#"{{ "bodies": [ {{ "shape": {{ "sphere": {{ "radius": 1 }} }}{extra} }} ] }}"#)
+    };
+    let scene = tatami_world::scene::Scene::from_json(&body(r#", "kinematic": true"#)).unwrap();
+    assert!(scene.world().unwrap().bodies()[0].is_kinematic());
+    let error =
+        tatami_world::scene::Scene::from_json(&body(r#", "kinematic": true, "fixed": true"#))
+            .unwrap_err()
+            .to_string();
+    assert!(error.contains("not both"), "{error}");
+}

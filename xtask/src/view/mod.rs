@@ -182,6 +182,35 @@ mod tests {
         assert_eq!(data["max_normal_force"].as_f64().unwrap(), largest);
     }
 
+    /// Every shape is sent as it is — a hull as outward triangles over its vertices — and a body
+    /// named to break out of the script element stays inside it.
+    #[test]
+    fn shapes_and_hostile_names_embed_safely() {
+        let scene = Scene::from_json(
+            r#"{ "bodies": [
+              { "name": "</script><!--", "shape": { "convex": { "points":
+                [[0,0,0],[1,0,0],[0,1,0],[0,0,1],[1,1,1],[0.2,0.2,0.2]] } } },
+              { "shape": { "cylinder": { "radius": 0.5, "height": 2 } }, "position": [3, 0, 0] },
+              { "shape": { "sphere": { "radius": 0.5 } }, "position": [6, 0, 0] } ] }"#,
+        )
+        .unwrap();
+        let world = scene.world().unwrap();
+        let recording = Recording::new("<hull>", "face", &world);
+        let html = page(&recording);
+        assert_eq!(html.matches("</script>").count(), 4, "only the page's own");
+        assert!(html.contains("<title>Tatami — &lt;hull&gt;</title>"));
+        let data = embedded(&html);
+        assert_eq!(data["bodies"][0]["name"], "</script><!--");
+        let hull = &data["bodies"][0]["shape"]["convex"];
+        let vertices = hull["vertices"].as_array().unwrap().len() / 3;
+        assert_eq!(vertices, 5, "the interior point is not a vertex");
+        let triangles = hull["triangles"].as_array().unwrap();
+        assert_eq!(triangles.len(), 3 * 6, "a triangular bipyramid has 6 faces");
+        assert!(triangles.iter().all(|i| (i.as_u64().unwrap() as usize) < vertices));
+        assert_eq!(data["bodies"][1]["shape"]["cylinder"]["height"], 2.0);
+        assert_eq!(data["bodies"][2]["shape"]["sphere"]["radius"], 0.5);
+    }
+
     /// A replayed trajectory moves the bodies it names and keeps the fixed ones where the scene
     /// has them; a trajectory naming a body the scene lacks is refused with its line.
     #[test]

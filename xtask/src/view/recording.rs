@@ -252,13 +252,14 @@ fn body_view(body: &Body) -> BodyView {
             height: 2.0 * half_height,
         },
         convex @ Shape::Convex { .. } => {
-            let (vertices, triangles) = convex.hull_mesh().unwrap_or_default();
+            let hull = convex.hull_mesh().unwrap_or_default();
             ShapeView::Convex {
-                vertices: vertices
+                vertices: hull
+                    .vertices
                     .iter()
                     .flat_map(|p| p.coords.iter().copied())
                     .collect(),
-                triangles: triangles.into_iter().flatten().collect(),
+                triangles: hull.triangles.into_iter().flatten().collect(),
             }
         }
     };
