@@ -206,7 +206,11 @@ mod tests {
         assert_eq!(vertices, 5, "the interior point is not a vertex");
         let triangles = hull["triangles"].as_array().unwrap();
         assert_eq!(triangles.len(), 3 * 6, "a triangular bipyramid has 6 faces");
-        assert!(triangles.iter().all(|i| (i.as_u64().unwrap() as usize) < vertices));
+        assert!(
+            triangles
+                .iter()
+                .all(|i| (i.as_u64().unwrap() as usize) < vertices)
+        );
         assert_eq!(data["bodies"][1]["shape"]["cylinder"]["height"], 2.0);
         assert_eq!(data["bodies"][2]["shape"]["sphere"]["radius"], 0.5);
     }
