@@ -25,7 +25,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use crate::{LcpError, LinearSet, Problem, Projection, dense, lemke, project_to_bounds};
+use crate::{LcpError, LinearSet, Problem, Projection, dense, lemke, project_to_bounds, residual};
 
 /// Settings of a direct solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -38,9 +38,10 @@ pub struct DirectParams {
     pub memory_budget: usize,
 }
 
-/// Lemke rarely needs more than a few pivots per variable on contact problems; 50 leaves a wide
-/// margin before [`LcpError::PivotLimit`].
-pub const DEFAULT_PIVOTS_PER_VARIABLE: usize = 50;
+/// Lemke needs one to three pivots per variable on contact problems; 10 leaves a margin before
+/// [`LcpError::PivotLimit`], past which the solve is retried regularised (see
+/// [`REGULARISATIONS`]) rather than cycle on.
+pub const DEFAULT_PIVOTS_PER_VARIABLE: usize = 10;
 
 /// 512 MiB: the dense matrices of about 4,600 standard-LCP variables, some 650 contact points
 /// with box friction (7 variables each), or about 160 resting cubes of the vertex model.
@@ -69,12 +70,21 @@ pub fn dense_bytes(rows: usize, variables: usize) -> usize {
 }
 
 /// What a direct solve did.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DirectInfo {
     /// Variables of the standard LCP (≥ rows).
     pub variables: usize,
     /// Lemke pivots made.
     pub pivots: usize,
+    /// A warning: `Some(ε)` when Lemke failed on the problem and the answer is that of the
+    /// problem regularised by `ε I` (see [`REGULARISATIONS`]); its complementarity error on the
+    /// true problem is of the order of `ε` times the impulses.
+    pub regularisation: Option<f64>,
+    /// The answer's error on the standard LCP (complementarity and feasibility) relative to the
+    /// problem's scale: round-off, about 1e-15, for an exact answer.
+    pub residual: f64,
+    /// Lemke paths tried (1 when the first answered; see [`RESIDUAL_TOLERANCE`]).
+    pub attempts: usize,
 }
 
 /// Solves `problem` exactly; writes impulses and velocities like the PGS solver.
@@ -106,11 +116,13 @@ pub fn solve<P: Projection>(
     }
     let (a, b) = dense::assemble(problem);
     let lcp = StandardForm::new(problem, sets, &a, &b);
-    let (x, pivots) = lemke::solve(
-        &lcp.matrix,
-        &lcp.q,
-        params.pivots_per_variable * lcp.q.len().max(1),
-    )?;
+    let Standard {
+        x,
+        pivots,
+        regularisation,
+        residual,
+        attempts,
+    } = solve_standard(&lcp.matrix, &lcp.q, params)?;
     let mut impulses = lcp.impulses(problem, &x);
     // Lemke keeps w ≥ 0 only to round-off, so a slack's bound may be missed by a few ulps of
     // the problem's scale; projecting onto the row bounds makes every answer admissible.
@@ -126,7 +138,88 @@ pub fn solve<P: Projection>(
     Ok(DirectInfo {
         variables: lcp.q.len(),
         pivots,
+        regularisation,
+        residual,
+        attempts,
     })
+}
+
+/// The standard LCP's error at `x` — the larger of its complementarity `max |min(xᵢ, wᵢ)|` and
+/// infeasibility — relative to the problem's scale `|q|∞ + |M|∞ |x|∞`.
+fn relative_residual(matrix: &DMatrix<f64>, q: &DVector<f64>, x: &DVector<f64>) -> f64 {
+    let w = matrix * x + q;
+    let error = residual::complementarity(x, &w).max(residual::infeasibility(x, &w));
+    let scale = q.amax() + matrix.amax() * x.amax();
+    if scale > 0.0 { error / scale } else { error }
+}
+
+/// Regularisations tried, relative to the largest diagonal entry, when Lemke fails on the
+/// problem as it is.
+pub const REGULARISATIONS: [f64; 3] = [1e-12, 1e-10, 1e-8];
+
+/// Largest relative residual (see [`DirectInfo::residual`]) of an accepted answer: far above the
+/// round-off of an exact one (below 1e-9 on contact problems), far below any error that shows
+/// in a trajectory.
+pub const RESIDUAL_TOLERANCE: f64 = 1e-6;
+
+/// Solves `M z + q` by Lemke's method, accepting an answer only when its residual is within
+/// [`RESIDUAL_TOLERANCE`]. Lemke's pivots decide on signs of round-off-sized entries, so on a
+/// degenerate contact problem one path ends on a ray, or on a basis that is not quite
+/// complementary, where another finds the answer. The paths tried, in order: scaled
+/// ([`lemke::solve`]) and unscaled ([`lemke::solve_unscaled`]), on the problem, then on
+/// `(M + ε I)` for each ε of [`REGULARISATIONS`] (times M's largest diagonal). Returns the answer,
+/// its pivots, the ε used if any, the residual on the true problem and the paths tried.
+fn solve_standard(
+    matrix: &DMatrix<f64>,
+    q: &DVector<f64>,
+    params: &DirectParams,
+) -> Result<Standard, LcpError> {
+    let limit = params.pivots_per_variable * q.len().max(1);
+    let scale = matrix.diagonal().amax();
+    let mut first_error = None;
+    let mut attempts = 0;
+    for relative in std::iter::once(None).chain(REGULARISATIONS.map(Some)) {
+        let epsilon = relative.map(|r| r * scale);
+        let regularised;
+        let system = match epsilon {
+            None => matrix,
+            Some(epsilon) => {
+                regularised = matrix + DMatrix::from_diagonal_element(q.len(), q.len(), epsilon);
+                &regularised
+            }
+        };
+        for path in [lemke::solve, lemke::solve_unscaled] {
+            attempts += 1;
+            let error = match path(system, q, limit) {
+                Ok((x, pivots)) => {
+                    let residual = relative_residual(matrix, q, &x);
+                    if residual <= RESIDUAL_TOLERANCE {
+                        return Ok(Standard {
+                            x,
+                            pivots,
+                            regularisation: epsilon,
+                            residual,
+                            attempts,
+                        });
+                    }
+                    LcpError::Inaccurate { residual }
+                }
+                Err(e @ (LcpError::RayTermination { .. } | LcpError::PivotLimit { .. })) => e,
+                Err(e) => return Err(e),
+            };
+            first_error.get_or_insert(error);
+        }
+    }
+    Err(first_error.expect("at least one attempt"))
+}
+
+/// An accepted answer of [`solve_standard`].
+struct Standard {
+    x: DVector<f64>,
+    pivots: usize,
+    regularisation: Option<f64>,
+    residual: f64,
+    attempts: usize,
 }
 
 /// The standard LCP equivalent to the blocks' linear sets, and the map back to impulses.

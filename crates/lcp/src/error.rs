@@ -14,6 +14,13 @@ pub enum LcpError {
         /// Pivots made before the ray was met.
         pivots: usize,
     },
+    /// Every answer the direct solver found (of the problem, then of it regularised) missed
+    /// complementarity by more than its tolerance.
+    #[error("the direct solver's best answer has a relative residual of {residual:e}")]
+    Inaccurate {
+        /// The first answer's relative residual.
+        residual: f64,
+    },
     /// The pivot budget ran out.
     #[error("Lemke's method did not finish within {limit} pivots")]
     PivotLimit {

@@ -42,7 +42,54 @@ pub fn lemke(
 }
 
 /// [`lemke`], also returning the number of pivots made.
+///
+/// The problem is first scaled to a unit diagonal, `z = D y` with `D = diag(aᵢᵢ)^(−1/2)` (1
+/// where `aᵢᵢ ≤ 0`): `D a D y + D q` has the same complementarity, and its pivots compare
+/// entries of one size. Contact problems mix generators whose diagonal is an inverse mass
+/// (1e-3 for a 1 t body) with budget rows of unit coefficients; unscaled, the ratio test took
+/// round-off for a positive entry and Lemke ended on a ray on solvable problems.
 pub fn solve(
+    a: &DMatrix<f64>,
+    q: &DVector<f64>,
+    max_pivots: usize,
+) -> Result<(DVector<f64>, usize), LcpError> {
+    dense::check_square_system(a, q)?;
+    let n = q.len();
+    if q.iter().all(|&x| x >= 0.0) {
+        return Ok((DVector::zeros(n), 0));
+    }
+    let mut d = DVector::from_fn(n, |i, _| {
+        let diagonal = a[(i, i)];
+        if diagonal > 0.0 {
+            1.0 / diagonal.sqrt()
+        } else {
+            1.0
+        }
+    });
+    // A variable without a diagonal (a budget's multiplier) is scaled so that its largest
+    // coupling to the scaled others is 1.
+    for j in (0..n).filter(|&j| a[(j, j)] <= 0.0) {
+        let largest = (0..n)
+            .filter(|&i| a[(i, i)] > 0.0)
+            .map(|i| a[(i, j)].abs().max(a[(j, i)].abs()) * d[i])
+            .fold(0.0, f64::max);
+        if largest > 0.0 {
+            d[j] = 1.0 / largest;
+        }
+    }
+    let scaled = DMatrix::from_fn(n, n, |i, j| d[i] * a[(i, j)] * d[j]);
+    let (y, pivots) = solve_unscaled(&scaled, &q.component_mul(&d), max_pivots)?;
+    let z = y.component_mul(&d);
+    if z.iter().all(|x| x.is_finite()) {
+        Ok((z, pivots))
+    } else {
+        Err(LcpError::Overflow { pivots })
+    }
+}
+
+/// Lemke's method on the problem as given, without [`solve`]'s scaling: another path through
+/// the same problem, which the direct solver tries when the scaled one fails.
+pub fn solve_unscaled(
     a: &DMatrix<f64>,
     q: &DVector<f64>,
     max_pivots: usize,

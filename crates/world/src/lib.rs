@@ -38,7 +38,7 @@ pub use error::{StepError, WorldError};
 pub use settings::{MAX_ITERATIONS, Solver, WorldSettings};
 pub use shape::{HullMesh, LENGTHS, MassProperties, Shape};
 pub use tatami_contact::{ContactModel, ContactProjection, ContactSettings, FrictionCone};
-pub use tatami_lcp::direct::DirectParams;
+pub use tatami_lcp::direct::{DirectInfo, DirectParams};
 pub use tatami_lcp::pgs::{PgsParams, WarmStart};
 pub use timings::StepTimings;
 pub use world::{MAX_TIME_STEP, World};

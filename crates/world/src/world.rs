@@ -5,8 +5,9 @@ use std::time::Instant;
 
 use nalgebra::Vector3;
 use tatami_contact::{Contact, ContactProjection};
+use tatami_lcp::direct::{self, DirectInfo};
 use tatami_lcp::pgs::{self, PgsParams, PgsWorkspace, Record, WarmStart};
-use tatami_lcp::{LcpError, Problem, direct};
+use tatami_lcp::{LcpError, Problem};
 
 use crate::body::{BodyKind, Motion};
 use crate::collision::{self, BodyGeometry, CollisionWorkspace};
@@ -56,6 +57,8 @@ pub struct World {
     /// Kahan compensation of `time`, so a thousand steps of 0.01 s end at exactly 10 s.
     time_compensation: f64,
     steps: usize,
+    /// What the direct solver did in the last step's velocity solve.
+    direct_info: Option<DirectInfo>,
     /// The last step's `dt`, which turns its impulses into forces.
     pub(crate) last_dt: f64,
     /// The handle the next added body gets.
@@ -85,6 +88,7 @@ impl World {
             time: 0.0,
             time_compensation: 0.0,
             steps: 0,
+            direct_info: None,
             last_dt: 0.0,
             next_id: 0,
         }
@@ -172,6 +176,12 @@ impl World {
     /// (`None` past the last contact).
     pub fn contact_blocks(&self, index: usize) -> Option<Range<usize>> {
         self.contact_set.get(index).map(|(_, blocks)| blocks)
+    }
+
+    /// What the direct solver did in the last step's velocity solve — its size, its pivots and
+    /// whether it had to regularise the problem (a warning) — or `None` under PGS.
+    pub fn direct_info(&self) -> Option<DirectInfo> {
+        self.direct_info
     }
 
     /// Time spent in each stage of the last step.
@@ -327,6 +337,7 @@ impl World {
 
     fn solve(&mut self) -> Result<(), StepError> {
         let model = self.settings.model;
+        self.direct_info = None;
         let result = match &self.settings.solver {
             Solver::Pgs(params) => {
                 let warm = params.warm_start == WarmStart::On;
@@ -345,7 +356,9 @@ impl World {
                 }
                 result
             }
-            Solver::Direct(params) => direct::solve(&mut self.problem, params).map(drop),
+            Solver::Direct(params) => direct::solve(&mut self.problem, params).map(|info| {
+                self.direct_info = Some(info);
+            }),
         };
         result.map_err(|source| StepError::Solver {
             pair: self.contact_of_error(&source),
