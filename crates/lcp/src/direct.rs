@@ -19,6 +19,13 @@
 //! `λ = β⁺ − β⁻`, `β± ⟂ ±w + γ ≥ 0`, `γ ⟂ μ λₙ − β⁺ − β⁻ ≥ 0`, `γ` the sliding speed. It is
 //! solved by [`lemke`](crate::lemke()).
 //!
+//! **Assembly.** `A = J M⁻¹ Jᵀ` is assembled body by body ([`dense::assemble`]), and the
+//! standard matrix block by block: `gᵀ A h` for generators of two blocks is zero unless the
+//! blocks share a body that impulses move, so only such pairs are visited — three per block of a
+//! tower, whatever its height. Lemke's tableau stays dense, which bounds the size: a problem
+//! whose storage ([`dense_bytes`]) passes [`DirectParams::memory_budget`] is refused with
+//! [`LcpError::TooLarge`], which names its unknowns, before anything is allocated.
+//!
 //! The rows' incoming impulses are ignored: the bodies' velocities are taken as those before any
 //! contact impulse, and the answer's impulses, projected onto the row bounds to remove Lemke's
 //! round-off, are written into the rows and applied.
@@ -43,8 +50,9 @@ pub struct DirectParams {
 /// [`REGULARISATIONS`]) rather than cycle on.
 pub const DEFAULT_PIVOTS_PER_VARIABLE: usize = 10;
 
-/// 512 MiB: the dense matrices of about 4,600 standard-LCP variables, some 650 contact points
-/// with box friction (7 variables each), or about 160 resting cubes of the vertex model.
+/// 512 MiB: the dense matrices of about 3,600 standard-LCP variables — some 500 contact points
+/// with box friction (7 variables each), 150 face contacts with the circular cone (24 each), or
+/// 50 cubes resting on their four corners under the vertex model (72 each).
 pub const DEFAULT_MEMORY_BUDGET: usize = 512 << 20;
 
 impl Default for DirectParams {
@@ -57,15 +65,14 @@ impl Default for DirectParams {
 }
 
 /// Bytes of dense storage a direct solve of `rows` contact rows and `variables` standard-LCP
-/// variables allocates: `A` (rows²), the standard matrix (variables²), Lemke's tableau
-/// (variables × (2·variables + 2)) and `A G` (variables × rows), in f64. Saturates instead of
-/// overflowing.
+/// variables allocates at most: `A` (rows²); the standard matrix, its regularised copy and
+/// Lemke's scaled copy (3 × variables²); and Lemke's tableau (variables × (2·variables + 2)),
+/// in f64. Saturates instead of overflowing.
 pub fn dense_bytes(rows: usize, variables: usize) -> usize {
     let cells = rows
         .saturating_mul(rows)
-        .saturating_add(variables.saturating_mul(variables))
-        .saturating_add(variables.saturating_mul(variables.saturating_mul(2).saturating_add(2)))
-        .saturating_add(variables.saturating_mul(rows));
+        .saturating_add(variables.saturating_mul(variables).saturating_mul(3))
+        .saturating_add(variables.saturating_mul(variables.saturating_mul(2).saturating_add(2)));
     cells.saturating_mul(std::mem::size_of::<f64>())
 }
 
@@ -242,8 +249,6 @@ impl StandardForm {
         b: &DVector<f64>,
     ) -> Self {
         let m = problem.rows.len();
-        // Each generator as (global row, coefficient) pairs, in variable order.
-        let mut columns: Vec<(usize, &[(usize, f64)])> = Vec::new();
         let mut offset = DVector::zeros(m);
         let mut placed = Vec::with_capacity(sets.len());
         let mut n = 0;
@@ -253,38 +258,34 @@ impl StandardForm {
                 offset[first_row + k] = value;
             }
             placed.push(n);
-            for (v, generator) in set.generators.iter().enumerate() {
-                columns.push((n + v, generator));
-            }
             n += set.variables();
         }
-        let row_of = |block: usize, k: usize| problem.blocks[block].rows.start + k;
-        let block_of: Vec<usize> = (0..sets.len())
-            .flat_map(|i| std::iter::repeat_n(i, sets[i].generators.len()))
-            .collect();
         let velocity_at_offset = a * &offset + b;
         let mut matrix = DMatrix::zeros(n, n);
         let mut q = DVector::zeros(n);
-        // A G, one column per generator: how each row's velocity moves per unit of it.
-        let moved: Vec<DVector<f64>> = columns
-            .iter()
-            .zip(&block_of)
-            .map(|(&(_, generator), &block)| {
-                generator.iter().fold(DVector::zeros(m), |sum, &(k, c)| {
-                    sum + a.column(row_of(block, k)) * c
-                })
-            })
-            .collect();
-        for (&(c, generator), &block) in columns.iter().zip(&block_of) {
-            let along = |vector: &DVector<f64>| -> f64 {
-                generator
+        for (i, (block, set)) in problem.blocks.iter().zip(&sets).enumerate() {
+            let rows = block.rows.start;
+            for (v, generator) in set.generators.iter().enumerate() {
+                q[placed[i] + v] = generator
                     .iter()
-                    .map(|&(k, coefficient)| coefficient * vector[row_of(block, k)])
-                    .sum()
-            };
-            q[c] = along(&velocity_at_offset);
-            for (&(v, _), column) in columns.iter().zip(&moved) {
-                matrix[(c, v)] = along(column);
+                    .map(|&(k, c)| c * velocity_at_offset[rows + k])
+                    .sum();
+            }
+        }
+        // gᵀ A h for generators g of block i and h of block j: zero unless the blocks share a
+        // moving body, so only those pairs are visited (a tower's block meets three).
+        for (i, j) in coupled_blocks(problem) {
+            let (rows_i, rows_j) = (problem.blocks[i].rows.start, problem.blocks[j].rows.start);
+            for (c, g) in sets[i].generators.iter().enumerate() {
+                for (v, h) in sets[j].generators.iter().enumerate() {
+                    matrix[(placed[i] + c, placed[j] + v)] = g
+                        .iter()
+                        .flat_map(|&(k, x)| {
+                            h.iter()
+                                .map(move |&(l, y)| x * y * a[(rows_i + k, rows_j + l)])
+                        })
+                        .sum();
+                }
             }
         }
         for (set, &first) in sets.iter().zip(&placed) {
@@ -318,6 +319,31 @@ impl StandardForm {
         }
         lambda
     }
+}
+
+/// Every ordered pair of blocks `(i, j)` (with `i = j`) that share a body an impulse moves.
+fn coupled_blocks<P>(problem: &Problem<P>) -> Vec<(usize, usize)> {
+    let mut touching: Vec<Vec<usize>> = vec![Vec::new(); problem.bodies.len()];
+    for (index, block) in problem.blocks.iter().enumerate() {
+        for body in [block.body_a.0, block.body_b.0] {
+            let b = &problem.bodies[body];
+            let moves = b.inv_mass != 0.0 || b.inv_inertia_world.iter().any(|&x| x != 0.0);
+            if moves && touching[body].last() != Some(&index) {
+                touching[body].push(index);
+            }
+        }
+    }
+    let mut pairs: Vec<(usize, usize)> = touching
+        .iter()
+        .flat_map(|blocks| {
+            blocks
+                .iter()
+                .flat_map(|&i| blocks.iter().map(move |&j| (i, j)))
+        })
+        .collect();
+    pairs.sort_unstable();
+    pairs.dedup();
+    pairs
 }
 
 /// Writes `impulses` into the rows and pushes them into the bodies' velocities.

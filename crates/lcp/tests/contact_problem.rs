@@ -358,7 +358,7 @@ proptest! {
 /// exact budget solves it.
 #[test]
 fn a_direct_problem_over_the_memory_budget_is_refused() {
-    let bytes = 8 * (12 * 12 + 28 * 28 + 28 * (2 * 28 + 2) + 28 * 12);
+    let bytes = 8 * (12 * 12 + 3 * 28 * 28 + 28 * (2 * 28 + 2));
     assert_eq!(direct::dense_bytes(12, 28), bytes);
     let mut problem = cube_on_ground(Vector3::new(0.0, 0.0, -G * DT), 0.5);
     let tight = direct::DirectParams {
