@@ -1,0 +1,422 @@
+//! Tatami's defaults beside Rapier (rapier3d-f64 and rapier3d, f32; their defaults, sleeping
+//! off) on general scenes, built for both engines from the same bodies: pyramids of 1 m, 1 kg
+//! cubes with bases of 20 and 40 (1 mm gaps), 1000 such cubes dropped from 1 to 20 m with seeded
+//! random turns, a pile of 1000 mixed shapes (boxes, spheres, cylinders, hulls), and the tower of
+//! 100 cubes of 2 m. μ = 0.5, 600 steps at dt = 1/60.
+//!
+//! For each engine: the median whole step, the median of each stage — collision, contact set and
+//! rows, solve, and the rest (position correction and integration for Tatami; Rapier's update) —
+//! and the quality: for pyramids and the tower the largest displacement of any body, for piles the
+//! fastest body at the end and the deepest floor penetration.
+//!
+//! Run: `cargo bench -p tatami-benches --bench general_comparison` (a few minutes).
+
+use std::time::{Duration, Instant};
+
+use nalgebra::{Point3, Quaternion, UnitQuaternion, Vector3};
+use tatami_world::scene::Scene;
+use tatami_world::{BodyDesc, Shape, WorldSettings};
+
+const DT: f64 = 1.0 / 60.0;
+const STEPS: usize = 600;
+
+/// A xorshift generator of numbers in [0, 1).
+struct Random(u64);
+
+impl Random {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn between(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.next()
+    }
+
+    fn rotation(&mut self) -> UnitQuaternion<f64> {
+        let q = Quaternion::new(
+            self.between(-1.0, 1.0),
+            self.between(-1.0, 1.0),
+            self.between(-1.0, 1.0),
+            self.between(-1.0, 1.0),
+        );
+        UnitQuaternion::from_quaternion(q)
+    }
+}
+
+fn floor() -> BodyDesc {
+    BodyDesc::fixed(Shape::cuboid([200.0, 200.0, 2.0]))
+        .name("floor")
+        .position([0.0, 0.0, -1.0])
+        .friction(0.5)
+}
+
+fn unit_cube(position: [f64; 3]) -> BodyDesc {
+    BodyDesc::dynamic(Shape::cuboid([1.0; 3]))
+        .mass(1.0)
+        .friction(0.5)
+        .position(position)
+}
+
+fn scene(bodies: Vec<BodyDesc>) -> Scene {
+    Scene {
+        gravity: Vector3::new(0.0, 0.0, -9.81),
+        dt: DT,
+        steps: STEPS,
+        settings: WorldSettings::default(),
+        bodies,
+        pgs_settings: Vec::new(),
+    }
+}
+
+/// A two-dimensional pyramid of `base` cubes at the bottom, 1 mm apart.
+fn pyramid(base: usize) -> Scene {
+    let mut bodies = vec![floor()];
+    for row in 0..base {
+        let count = base - row;
+        for i in 0..count {
+            let x = (i as f64 - (count - 1) as f64 / 2.0) * 1.001;
+            bodies.push(unit_cube([x, 0.0, 0.5 + row as f64]));
+        }
+    }
+    scene(bodies)
+}
+
+/// 1000 bodies dropped from 1 to 20 m, turned at random; `shapes` picks each one's shape.
+fn pile(seed: u64, shapes: impl Fn(&mut Random, usize) -> Shape) -> Scene {
+    let mut random = Random(0x9e37_79b9_7f4a_7c15 ^ seed);
+    let mut bodies = vec![floor()];
+    for k in 0..1000 {
+        let (layer, cell) = (k / 100, k % 100);
+        let x = (cell % 10) as f64 * 2.0 - 9.0 + random.between(-0.3, 0.3);
+        let y = (cell / 10) as f64 * 2.0 - 9.0 + random.between(-0.3, 0.3);
+        let z = 1.0 + layer as f64 * 2.0 + random.between(0.0, 0.5);
+        bodies.push(
+            BodyDesc::dynamic(shapes(&mut random, k))
+                .mass(1.0)
+                .friction(0.5)
+                .position([x, y, z])
+                .rotation(random.rotation()),
+        );
+    }
+    scene(bodies)
+}
+
+fn mixed(random: &mut Random, k: usize) -> Shape {
+    match k % 4 {
+        0 => Shape::cuboid([
+            random.between(0.4, 1.0),
+            random.between(0.4, 1.0),
+            random.between(0.4, 1.0),
+        ]),
+        1 => Shape::sphere(random.between(0.25, 0.5)),
+        2 => Shape::cylinder(random.between(0.25, 0.5), random.between(0.4, 1.0)),
+        _ => Shape::convex(
+            (0..10)
+                .map(|_| {
+                    Point3::new(
+                        random.between(-0.5, 0.5),
+                        random.between(-0.5, 0.5),
+                        random.between(-0.5, 0.5),
+                    )
+                })
+                .collect(),
+        ),
+    }
+}
+
+fn tower() -> Scene {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/tower_100_60hz.json");
+    Scene::load(path).expect("the tower scene loads")
+}
+
+/// The height of a body's lowest point.
+fn lowest(shape: &Shape, position: &Point3<f64>, rotation: &UnitQuaternion<f64>) -> f64 {
+    let axis = |i: usize| rotation * Vector3::ith(i, 1.0);
+    position.z
+        - match shape {
+            Shape::Box { half_extents: h } => (0..3).map(|i| axis(i).z.abs() * h[i]).sum(),
+            Shape::Sphere { radius } => *radius,
+            Shape::Cylinder {
+                radius,
+                half_height,
+            } => {
+                let a = axis(2).z;
+                radius * (1.0 - a * a).max(0.0).sqrt() + half_height * a.abs()
+            }
+            Shape::Convex { points } => points
+                .iter()
+                .map(|p| -(rotation * p.coords).z)
+                .fold(f64::NEG_INFINITY, f64::max),
+        }
+}
+
+/// Stage times of one step: collision, contact set and rows, solve, the rest.
+type Stages = [Duration; 4];
+
+/// What one engine measured on one scene.
+struct Measured {
+    step: Duration,
+    stages: Stages,
+    moved: f64,
+    fastest: f64,
+    penetration: f64,
+}
+
+/// A body's pose and speed as an engine reports it.
+struct State {
+    position: Point3<f64>,
+    rotation: UnitQuaternion<f64>,
+    speed: f64,
+}
+
+fn median(mut times: Vec<Duration>) -> Duration {
+    times.sort_unstable();
+    times.get(times.len() / 2).copied().unwrap_or_default()
+}
+
+/// Steps `step` (which returns its stage times) 600 times and measures.
+fn measure(
+    scene: &Scene,
+    mut step: impl FnMut() -> Result<Stages, String>,
+    states: impl Fn() -> Vec<State>,
+) -> Result<Measured, String> {
+    let start = states();
+    let mut moved: f64 = 0.0;
+    let mut times = Vec::with_capacity(STEPS);
+    let mut stages: [Vec<Duration>; 4] = Default::default();
+    for _ in 0..STEPS {
+        let started = Instant::now();
+        let split = step()?;
+        times.push(started.elapsed());
+        for (list, time) in stages.iter_mut().zip(split) {
+            list.push(time);
+        }
+        let now = states();
+        for (a, b) in now.iter().zip(&start) {
+            moved = moved.max((a.position - b.position).norm());
+        }
+    }
+    let end = states();
+    let dynamic = || {
+        scene
+            .bodies
+            .iter()
+            .zip(&end)
+            .filter(|(desc, _)| !desc.fixed)
+    };
+    Ok(Measured {
+        step: median(times),
+        stages: stages.map(median),
+        moved,
+        fastest: dynamic().map(|(_, s)| s.speed).fold(0.0, f64::max),
+        penetration: dynamic()
+            .map(|(desc, s)| -lowest(&desc.shape, &s.position, &s.rotation))
+            .fold(0.0, f64::max),
+    })
+}
+
+fn tatami(scene: &Scene) -> Result<Measured, String> {
+    let world = std::cell::RefCell::new(scene.world().map_err(|e| e.to_string())?);
+    let step = || {
+        let mut world = world.borrow_mut();
+        world.step(scene.dt).map_err(|e| e.to_string())?;
+        let t = world.timings();
+        Ok([t.collision, t.setup, t.solve, t.correction + t.integrate])
+    };
+    let states = || {
+        world
+            .borrow()
+            .bodies()
+            .iter()
+            .map(|b| State {
+                position: b.position(),
+                rotation: b.rotation(),
+                speed: b.linear_velocity().norm(),
+            })
+            .collect()
+    };
+    measure(scene, step, states)
+}
+
+/// The scene in one of Rapier's two builds (the crates differ only in `Real`).
+macro_rules! rapier_scene {
+    ($name:ident, $rapier:ident, $real:ty) => {
+        fn $name(scene: &Scene) -> Result<Measured, String> {
+            use $rapier::prelude::*;
+            let v = |x: f64, y: f64, z: f64| Vector::new(x as $real, y as $real, z as $real);
+            let mut bodies = RigidBodySet::new();
+            let mut colliders = ColliderSet::new();
+            let mut handles = Vec::new();
+            for desc in &scene.bodies {
+                let volume = desc
+                    .shape
+                    .mass_properties()
+                    .map_err(|e| e.to_string())?
+                    .volume;
+                let density = match desc.mass {
+                    tatami_world::MassSpec::Mass(m) => m / volume,
+                    tatami_world::MassSpec::Density(rho) => rho,
+                };
+                let collider = match &desc.shape {
+                    tatami_world::Shape::Box { half_extents: h } => {
+                        ColliderBuilder::cuboid(h.x as $real, h.y as $real, h.z as $real)
+                    }
+                    tatami_world::Shape::Sphere { radius } => {
+                        ColliderBuilder::ball(*radius as $real)
+                    }
+                    // Rapier's cylinders run along y, Tatami's along z.
+                    tatami_world::Shape::Cylinder {
+                        radius,
+                        half_height,
+                    } => ColliderBuilder::cylinder(*half_height as $real, *radius as $real)
+                        .rotation(v(std::f64::consts::FRAC_PI_2, 0.0, 0.0)),
+                    tatami_world::Shape::Convex { points } => {
+                        let points: Vec<_> = points.iter().map(|p| v(p.x, p.y, p.z)).collect();
+                        ColliderBuilder::convex_hull(&points).ok_or("no hull")?
+                    }
+                };
+                let body = if desc.fixed {
+                    RigidBodyBuilder::fixed()
+                } else {
+                    RigidBodyBuilder::dynamic().can_sleep(false)
+                };
+                let (p, turn) = (desc.position, desc.rotation.scaled_axis());
+                let handle = bodies.insert(
+                    body.translation(v(p.x, p.y, p.z))
+                        .rotation(v(turn.x, turn.y, turn.z)),
+                );
+                colliders.insert_with_parent(
+                    collider
+                        .density(density as $real)
+                        .friction(desc.static_friction as $real),
+                    handle,
+                    &mut bodies,
+                );
+                handles.push(handle);
+            }
+            let parameters = IntegrationParameters {
+                dt: scene.dt as $real,
+                ..IntegrationParameters::default()
+            };
+            let g = scene.gravity;
+            let gravity = v(g.x, g.y, g.z);
+            let mut pipeline = PhysicsPipeline::new();
+            pipeline.counters.enable();
+            let world = std::cell::RefCell::new((
+                bodies,
+                colliders,
+                pipeline,
+                IslandManager::new(),
+                BroadPhaseBvh::new(),
+                NarrowPhase::new(),
+                ImpulseJointSet::new(),
+                MultibodyJointSet::new(),
+                CCDSolver::new(),
+            ));
+            let step = || {
+                let w = &mut *world.borrow_mut();
+                w.2.step(
+                    gravity,
+                    &parameters,
+                    &mut w.3,
+                    &mut w.4,
+                    &mut w.5,
+                    &mut w.0,
+                    &mut w.1,
+                    &mut w.6,
+                    &mut w.7,
+                    &mut w.8,
+                    &(),
+                    &(),
+                );
+                let c = &w.2.counters;
+                let ms = |t: f64| Duration::from_secs_f64(t / 1e3);
+                let collision = c.stages.collision_detection_time.time_ms();
+                let rows = c.stages.island_construction_time.time_ms()
+                    + c.solver.velocity_assembly_time.time_ms();
+                let solve =
+                    c.stages.solver_time.time_ms() - c.solver.velocity_assembly_time.time_ms();
+                let rest = c.step_time_ms() - collision - rows - solve;
+                Ok([
+                    ms(collision),
+                    ms(rows),
+                    ms(solve.max(0.0)),
+                    ms(rest.max(0.0)),
+                ])
+            };
+            let states = || {
+                let w = world.borrow();
+                handles
+                    .iter()
+                    .map(|&h| {
+                        let body = &w.0[h];
+                        let (t, q, s) = (body.translation(), body.rotation(), body.linvel());
+                        State {
+                            position: ::nalgebra::Point3::new(t.x as f64, t.y as f64, t.z as f64),
+                            rotation: ::nalgebra::UnitQuaternion::new_normalize(
+                                ::nalgebra::Quaternion::new(
+                                    q.w as f64, q.x as f64, q.y as f64, q.z as f64,
+                                ),
+                            ),
+                            speed: ::nalgebra::Vector3::new(s.x as f64, s.y as f64, s.z as f64)
+                                .norm(),
+                        }
+                    })
+                    .collect()
+            };
+            measure(scene, step, states)
+        }
+    };
+}
+
+rapier_scene!(rapier_f64, rapier3d_f64, f64);
+rapier_scene!(rapier_f32, rapier3d, f32);
+
+/// One engine's run of a scene.
+type Engine = fn(&Scene) -> Result<Measured, String>;
+
+fn main() {
+    let scenes: [(&str, Scene); 5] = [
+        ("pyramid, base 20 (210 cubes)", pyramid(20)),
+        ("pyramid, base 40 (820 cubes)", pyramid(40)),
+        (
+            "1000 cubes dropped",
+            pile(1, |_, _| Shape::cuboid([1.0; 3])),
+        ),
+        ("1000 mixed shapes dropped", pile(2, mixed)),
+        ("tower of 100 cubes of 2 m", tower()),
+    ];
+    let engines: [(&str, Engine); 3] = [
+        ("tatami defaults", tatami),
+        ("rapier3d-f64", rapier_f64),
+        ("rapier3d (f32)", rapier_f32),
+    ];
+    println!(
+        "| scene | engine | step (ms) | collision | contact set and rows | solve | rest | \
+         largest displacement (m) | fastest at the end (m/s) | deepest penetration (m) |"
+    );
+    println!("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    let ms = |d: Duration| d.as_secs_f64() * 1e3;
+    for (name, scene) in &scenes {
+        for (engine, run) in engines {
+            match run(scene) {
+                Ok(m) => println!(
+                    "| {name} | {engine} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.4} |",
+                    ms(m.step),
+                    ms(m.stages[0]),
+                    ms(m.stages[1]),
+                    ms(m.stages[2]),
+                    ms(m.stages[3]),
+                    m.moved,
+                    m.fastest,
+                    m.penetration
+                ),
+                Err(e) => println!("| {name} | {engine} | failed: {e} | | | | | | | |"),
+            }
+        }
+    }
+}
