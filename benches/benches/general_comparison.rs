@@ -14,36 +14,22 @@
 use std::time::{Duration, Instant};
 
 use nalgebra::{Point3, Quaternion, UnitQuaternion, Vector3};
+use tatami_world::dropped::Random;
 use tatami_world::scene::Scene;
 use tatami_world::{BodyDesc, Shape, WorldSettings};
 
 const DT: f64 = 1.0 / 60.0;
 const STEPS: usize = 600;
 
-/// A xorshift generator of numbers in [0, 1).
-struct Random(u64);
-
-impl Random {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn between(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-
-    fn rotation(&mut self) -> UnitQuaternion<f64> {
-        let q = Quaternion::new(
-            self.between(-1.0, 1.0),
-            self.between(-1.0, 1.0),
-            self.between(-1.0, 1.0),
-            self.between(-1.0, 1.0),
-        );
-        UnitQuaternion::from_quaternion(q)
-    }
+/// A random orientation (a normalised random quaternion).
+fn random_rotation(random: &mut Random) -> UnitQuaternion<f64> {
+    let mut component = || random.between(-1.0, 1.0);
+    UnitQuaternion::from_quaternion(Quaternion::new(
+        component(),
+        component(),
+        component(),
+        component(),
+    ))
 }
 
 fn floor() -> BodyDesc {
@@ -86,7 +72,7 @@ fn pyramid(base: usize) -> Scene {
 
 /// 1000 bodies dropped from 1 to 20 m, turned at random; `shapes` picks each one's shape.
 fn pile(seed: u64, shapes: impl Fn(&mut Random, usize) -> Shape) -> Scene {
-    let mut random = Random(0x9e37_79b9_7f4a_7c15 ^ seed);
+    let mut random = Random::new(0x9e37_79b9_7f4a_7c15 ^ seed);
     let mut bodies = vec![floor()];
     for k in 0..1000 {
         let (layer, cell) = (k / 100, k % 100);
@@ -98,7 +84,7 @@ fn pile(seed: u64, shapes: impl Fn(&mut Random, usize) -> Shape) -> Scene {
                 .mass(1.0)
                 .friction(0.5)
                 .position([x, y, z])
-                .rotation(random.rotation()),
+                .rotation(random_rotation(&mut random)),
         );
     }
     scene(bodies)

@@ -252,6 +252,17 @@ pub enum BodyKind {
     Kinematic,
 }
 
+impl BodyKind {
+    /// `dynamic`, `fixed` or `kinematic`, as in scene files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Dynamic => "dynamic",
+            Self::Fixed => "fixed",
+            Self::Kinematic => "kinematic",
+        }
+    }
+}
+
 /// A body's handle in a [`World`](crate::World), returned by
 /// [`World::add_body`](crate::World::add_body): it names the same body for the world's whole
 /// life, through the removal of others, and is never given to another body.

@@ -291,11 +291,7 @@ impl World {
 fn wrong_kind(body: &Body, action: &'static str) -> WorldError {
     WorldError::WrongKind {
         body: body.name().to_owned(),
-        kind: match body.kind() {
-            BodyKind::Dynamic => "dynamic",
-            BodyKind::Fixed => "fixed",
-            BodyKind::Kinematic => "kinematic",
-        },
+        kind: body.kind().name(),
         action,
     }
 }

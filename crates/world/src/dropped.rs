@@ -10,19 +10,41 @@ use crate::{BodyDesc, Shape, WorldSettings};
 /// and settle.
 pub const DROP_STEPS: usize = 500;
 
-/// A xorshift generator of numbers in [0, 1).
-struct Random(u64);
+/// The xorshift generator of numbers in [0, 1) behind these scenes, for others that must be
+/// the same on every machine (benchmarks' scenes).
+///
+/// ```
+/// use tatami_world::dropped::Random;
+/// let mut random = Random::new(7);
+/// let x = random.between(2.0, 3.0);
+/// assert!((2.0..3.0).contains(&x));
+/// assert_eq!(Random::new(7).between(2.0, 3.0), x, "the same seed, the same numbers");
+/// ```
+#[derive(Debug, Clone)]
+pub struct Random(u64);
 
 impl Random {
-    fn next(&mut self) -> f64 {
+    /// A generator from `seed` (any value; zero is remapped, as xorshift needs a non-zero
+    /// state).
+    pub fn new(seed: u64) -> Self {
+        Self(if seed == 0 {
+            0x9e37_79b9_7f4a_7c15
+        } else {
+            seed
+        })
+    }
+
+    /// The next number in [0, 1).
+    pub fn unit(&mut self) -> f64 {
         self.0 ^= self.0 << 13;
         self.0 ^= self.0 >> 7;
         self.0 ^= self.0 << 17;
         (self.0 >> 11) as f64 / (1u64 << 53) as f64
     }
 
-    fn between(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
+    /// The next number in [lo, hi).
+    pub fn between(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.unit()
     }
 }
 
@@ -35,7 +57,7 @@ fn shape(random: &mut Random) -> (Shape, Vec<Vector3<f64>>) {
             Vector3::new(radius * t.cos(), radius * t.sin(), z)
         })
     };
-    match (random.next() * 4.0) as u32 {
+    match (random.unit() * 4.0) as u32 {
         0 => {
             let size = [0.0; 3].map(|_: f64| random.between(0.2, 0.9));
             let corners = (0..8)
@@ -86,7 +108,7 @@ fn shape(random: &mut Random) -> (Shape, Vec<Vector3<f64>>) {
 /// to 2 m; even scenes place them at most 1 cm above the floor, where a fall's energy deficit
 /// (semi-implicit Euler loses ½g²dt² per unit mass a step in free fall) cannot hide a gain.
 pub fn dropped_scene(seed: u64) -> Scene {
-    let mut random = Random(0x9e37_79b9_7f4a_7c15 ^ (seed + 1).wrapping_mul(0x2545_f491));
+    let mut random = Random::new(0x9e37_79b9_7f4a_7c15 ^ (seed + 1).wrapping_mul(0x2545_f491));
     let mut bodies = vec![
         BodyDesc::fixed(Shape::cuboid([40.0, 40.0, 2.0]))
             .name("floor")
@@ -94,13 +116,13 @@ pub fn dropped_scene(seed: u64) -> Scene {
     ];
     let drop = if seed.is_multiple_of(2) { 0.01 } else { 2.0 };
     let mut placed: Vec<(Point3<f64>, f64)> = Vec::new();
-    let count = 1 + (random.next() * 6.0) as usize;
+    let count = 1 + (random.unit() * 6.0) as usize;
     while placed.len() < count {
         let (shape, surface) = shape(&mut random);
         let axis = Vector3::new(
-            random.next() - 0.5,
-            random.next() - 0.5,
-            random.next() - 0.5,
+            random.unit() - 0.5,
+            random.unit() - 0.5,
+            random.unit() - 0.5,
         );
         let rotation = UnitQuaternion::from_scaled_axis(axis * 6.0);
         let lowest = match shape {

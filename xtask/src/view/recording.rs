@@ -8,7 +8,7 @@ use std::path::Path;
 use nalgebra::Vector3;
 use serde::Serialize;
 use tatami_world::scene::Scene;
-use tatami_world::{Body, BodyKind, Shape, World};
+use tatami_world::{Body, Shape, World};
 
 use crate::trajectory;
 
@@ -265,11 +265,7 @@ fn body_view(body: &Body) -> BodyView {
     };
     BodyView {
         name: body.name().to_owned(),
-        kind: match body.kind() {
-            BodyKind::Dynamic => "dynamic",
-            BodyKind::Fixed => "fixed",
-            BodyKind::Kinematic => "kinematic",
-        },
+        kind: body.kind().name(),
         shape,
     }
 }
