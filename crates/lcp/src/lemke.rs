@@ -78,7 +78,7 @@ pub fn solve(
         }
     }
     let scaled = DMatrix::from_fn(n, n, |i, j| d[i] * a[(i, j)] * d[j]);
-    let (y, pivots) = solve_unscaled(&scaled, &q.component_mul(&d), max_pivots)?;
+    let (y, pivots) = pivot_to_solution(&scaled, &q.component_mul(&d), max_pivots)?;
     let z = y.component_mul(&d);
     if z.iter().all(|x| x.is_finite()) {
         Ok((z, pivots))
@@ -95,10 +95,19 @@ pub fn solve_unscaled(
     max_pivots: usize,
 ) -> Result<(DVector<f64>, usize), LcpError> {
     dense::check_square_system(a, q)?;
-    let n = q.len();
     if q.iter().all(|&x| x >= 0.0) {
-        return Ok((DVector::zeros(n), 0));
+        return Ok((DVector::zeros(q.len()), 0));
     }
+    pivot_to_solution(a, q, max_pivots)
+}
+
+/// Lemke's pivots on a checked problem with some `qᵢ < 0`.
+fn pivot_to_solution(
+    a: &DMatrix<f64>,
+    q: &DVector<f64>,
+    max_pivots: usize,
+) -> Result<(DVector<f64>, usize), LcpError> {
+    let n = q.len();
     let mut tableau = Tableau::new(a, q);
     let z0 = 2 * n;
     // First pivot: z₀ replaces the most negative qᵢ; among ties the last row, which keeps the

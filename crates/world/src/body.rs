@@ -495,6 +495,7 @@ impl Body {
     /// linear velocity, the orientation and angular velocity by the free-rotation step (see
     /// [`crate::rotation`]), which keeps the angular momentum. A position `correction`'s
     /// pseudo-velocities move the centre and turn the body on top, leaving its velocities alone.
+    /// A kinematic body ignores both: it moves to its target, or at its own velocities.
     pub(crate) fn motion(
         &self,
         solved: &SolverBody,
@@ -502,7 +503,16 @@ impl Body {
         dt: f64,
     ) -> Motion {
         if self.kind == BodyKind::Kinematic {
-            // As prescribed: a constant twist over the step.
+            // Exactly where a target sent it, then at rest until told otherwise.
+            if let Some((centre, rotation)) = self.target {
+                return Motion {
+                    centre,
+                    rotation,
+                    linear_velocity: Vector3::zeros(),
+                    angular_velocity: Vector3::zeros(),
+                };
+            }
+            // Otherwise as prescribed: a constant twist over the step.
             let centre = self.centre + self.linear_velocity * dt;
             let mut rotation =
                 UnitQuaternion::from_scaled_axis(self.angular_velocity * dt) * self.rotation;

@@ -55,9 +55,7 @@ impl World {
         rotation: UnitQuaternion<f64>,
     ) -> Result<(), WorldError> {
         let body = self.body_mut(id)?;
-        if !rotation.coords.iter().all(|x| x.is_finite()) {
-            return Err(invalid(body, "rotation", "must be finite".into()));
-        }
+        check_rotation(body, &rotation)?;
         let origin = body.position();
         body.rotation = rotation;
         body.centre = origin + rotation * body.com_offset();
@@ -116,9 +114,7 @@ impl World {
         let position = position.into();
         let body = self.of_kind(id, BodyKind::Kinematic, "follow a target")?;
         check_vector(body, "position", &position.coords, POSITION_LIMIT)?;
-        if !rotation.coords.iter().all(|x| x.is_finite()) {
-            return Err(invalid(body, "rotation", "must be finite".into()));
-        }
+        check_rotation(body, &rotation)?;
         body.target = Some((position + rotation * body.com_offset(), rotation));
         Ok(())
     }
@@ -301,6 +297,15 @@ fn invalid(body: &Body, field: &'static str, reason: String) -> WorldError {
         body: body.name().to_owned(),
         field,
         reason,
+    }
+}
+
+/// `rotation` must be finite.
+fn check_rotation(body: &Body, rotation: &UnitQuaternion<f64>) -> Result<(), WorldError> {
+    if rotation.coords.iter().all(|x| x.is_finite()) {
+        Ok(())
+    } else {
+        Err(invalid(body, "rotation", "must be finite".into()))
     }
 }
 

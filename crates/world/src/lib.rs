@@ -10,6 +10,10 @@
 //! step that conserves its angular momentum, so tumbling bodies precess and flip as Euler's
 //! equations say. Each stage is timed ([`World::timings`]) so experiments can time the solver
 //! call alone.
+//!
+//! Between steps a program drives the world through [`BodyId`] handles: poses and velocities,
+//! forces, torques and impulses, kinematic bodies ([`BodyDesc::kinematic`]) and their targets,
+//! removal, and each contact's wrench read back ([`World::contact_wrenches`]).
 
 mod body;
 mod broad_phase;

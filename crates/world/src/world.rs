@@ -62,7 +62,7 @@ pub struct World {
     /// The last step's `dt`, which turns its impulses into forces.
     pub(crate) last_dt: f64,
     /// The handle the next added body gets.
-    pub(crate) next_id: u64,
+    next_id: u64,
 }
 
 impl World {
@@ -458,20 +458,10 @@ impl World {
         let corrections = &self.correction.bodies;
         self.motions.clear();
         for (index, (body, solved)) in self.bodies.iter().zip(&self.problem.bodies).enumerate() {
-            let motion = match body.kind() {
-                BodyKind::Fixed => continue,
-                // Exactly where it was sent, then at rest until told otherwise.
-                BodyKind::Kinematic => match body.target {
-                    Some((centre, rotation)) => Motion {
-                        centre,
-                        rotation,
-                        linear_velocity: Vector3::zeros(),
-                        angular_velocity: Vector3::zeros(),
-                    },
-                    None => body.motion(solved, None, dt),
-                },
-                BodyKind::Dynamic => body.motion(solved, corrections.get(index), dt),
-            };
+            if body.is_fixed() {
+                continue;
+            }
+            let motion = body.motion(solved, corrections.get(index), dt);
             if !motion.is_finite() {
                 return Err(StepError::NonFiniteState {
                     body: body.name().to_owned(),

@@ -25,6 +25,15 @@ fn unit_cube(name: &str, x: f64, y: f64, yaw: f64) -> BodyDesc {
         .rotation(rotation([0.0, 0.0, 1.0], yaw))
 }
 
+/// An empty world with the default settings but `model`.
+fn empty_world(model: ContactModel) -> World {
+    let settings = WorldSettings {
+        model,
+        ..WorldSettings::default()
+    };
+    World::builder().settings(settings).build().unwrap()
+}
+
 fn steps(world: &mut World, count: usize) {
     for _ in 0..count {
         world.step(DT).unwrap();
@@ -78,16 +87,8 @@ fn a_kinematic_pusher_pushes_a_resting_cube_ahead_of_it() {
 /// `(F − μmg)/m` along the force (the closed form of Coulomb sliding).
 #[test]
 fn a_force_above_mu_m_g_accelerates_a_cube_at_the_closed_form() {
-    for model in [
-        ContactModel::Face,
-        ContactModel::Patch,
-        ContactModel::Vertex,
-    ] {
-        let settings = WorldSettings {
-            model,
-            ..WorldSettings::default()
-        };
-        let mut world = World::builder().settings(settings).build().unwrap();
+    for model in ContactModel::ALL {
+        let mut world = empty_world(model);
         world.add_body(floor()).unwrap();
         let mass = 2.0;
         let cube = world
@@ -186,16 +187,8 @@ fn an_impulse_changes_the_velocity_at_once() {
 /// below that).
 #[test]
 fn the_wrench_read_out_balances_the_weights_at_the_centres_of_mass() {
-    for model in [
-        ContactModel::Face,
-        ContactModel::Patch,
-        ContactModel::Vertex,
-    ] {
-        let settings = WorldSettings {
-            model,
-            ..WorldSettings::default()
-        };
-        let mut world = World::builder().settings(settings).build().unwrap();
+    for model in ContactModel::ALL {
+        let mut world = empty_world(model);
         let floor = world.add_body(floor()).unwrap();
         let (big_mass, small_mass) = (5.0, 1.5);
         let slab = world
@@ -306,8 +299,7 @@ fn a_kinematic_target_is_reached_in_one_step() {
     let turn = rotation([0.0, 0.0, 1.0], 5.0);
     for k in 1..=20 {
         let target = [0.01 * k as f64, 0.0, 2.0];
-        let heading =
-            UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 0.0) * turn.powf(k as f64);
+        let heading = turn.powf(k as f64);
         world.set_kinematic_target(hand, target, heading).unwrap();
         world.step(DT).unwrap();
         let body = world.body_by_id(hand).unwrap();

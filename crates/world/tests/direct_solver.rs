@@ -92,10 +92,11 @@ fn the_held_out_scenes_solve() {
 /// and touch in every way; the direct solver must solve each one's next problem under every
 /// model, every answer within its residual tolerance — or say it failed.
 ///
-/// Known limit: of the 450 problems of seeds 0 to 149 (release: `piles` in the crate README),
-/// one — seed 52 under the vertex model, 1,188 unknowns — has no path of Lemke's that reaches a
-/// residual below 1e-6 (the best is 9e-5); it is refused with `LcpError::Inaccurate`. Before
-/// the residual check its answer (residual 7e-3) was returned as exact.
+/// Known limit: of the `direct_piles` example's 6,000 problems (2,000 seeds, table in
+/// `crates/lcp/README.md`), one — seed 52 under the vertex model, 1,188 unknowns, also built
+/// here — has no path of Lemke's that reaches a residual below 1e-6 (the best is 9e-5); it is
+/// refused with `LcpError::Inaccurate`. Before the residual check its answer (residual 7e-3) was
+/// returned as exact.
 #[test]
 fn random_piles_solve_under_every_model() {
     let (mut failed, mut retried) = (Vec::new(), 0);
@@ -127,6 +128,6 @@ fn random_piles_solve_under_every_model() {
         }
     }
     assert!(failed.len() <= 1, "failed: {failed:?}");
-    // Retrying another path is the exception (measured: 14 of 450 problems).
+    // Retrying another path is the exception (measured: 98 of the example's 6,000 problems).
     assert!(retried <= 10, "{retried} of 180 solves needed a retry");
 }
