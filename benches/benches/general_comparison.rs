@@ -9,7 +9,9 @@
 //! and the quality: for pyramids and the tower the largest displacement of any body, for piles the
 //! fastest body at the end and the deepest floor penetration.
 //!
-//! Run: `cargo bench -p tatami-benches --bench general_comparison` (a few minutes).
+//! Run: `cargo bench -p tatami-benches --bench general_comparison` (a few minutes). Arguments
+//! after `--` keep only the scenes and engines whose names contain one of them, e.g.
+//! `-- pile tatami` for Tatami on both piles (for a profiler).
 
 use std::time::{Duration, Instant};
 
@@ -381,14 +383,31 @@ fn main() {
         ("rapier3d-f64", rapier_f64),
         ("rapier3d (f32)", rapier_f32),
     ];
+    // Cargo passes `--bench` to a bench without a harness; the rest are filters.
+    let filters: Vec<String> = std::env::args()
+        .skip(1)
+        .filter(|a| a != "--bench")
+        .collect();
+    let wanted = |name: &str, all: &[&str]| {
+        let named: Vec<_> = filters
+            .iter()
+            .filter(|f| all.iter().any(|n| n.contains(f.as_str())))
+            .collect();
+        named.is_empty() || named.iter().any(|f| name.contains(f.as_str()))
+    };
+    let scene_names: Vec<&str> = scenes.iter().map(|(n, _)| *n).collect();
+    let engine_names: Vec<&str> = engines.iter().map(|(n, _)| *n).collect();
     println!(
         "| scene | engine | step (ms) | collision | contact set and rows | solve | rest | \
          largest displacement (m) | fastest at the end (m/s) | deepest penetration (m) |"
     );
     println!("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|");
     let ms = |d: Duration| d.as_secs_f64() * 1e3;
-    for (name, scene) in &scenes {
-        for (engine, run) in engines {
+    for (name, scene) in scenes.iter().filter(|(n, _)| wanted(n, &scene_names)) {
+        for (engine, run) in engines
+            .into_iter()
+            .filter(|(n, _)| wanted(n, &engine_names))
+        {
             match run(scene) {
                 Ok(m) => println!(
                     "| {name} | {engine} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.4} |",

@@ -67,13 +67,12 @@ impl FaceProjection {
             return;
         };
         let absolute = self.centre + p.coords;
-        let location = self.support.locate_from(&absolute, self.hint);
-        self.hint = location.sector;
-        if location.inside {
+        // One search: the nearest point is the point itself when it is inside.
+        let (nearest, sector) = self.support.nearest_point_from(&absolute, self.hint);
+        self.hint = sector;
+        if nearest == absolute {
             return;
         }
-        let (nearest, sector) = self.support.nearest_point_from(&absolute, location.sector);
-        self.hint = sector;
         let p_hat = nearest - self.centre;
         impulses[TILT_1] = p_hat.y * f3;
         impulses[TILT_2] = -p_hat.x * f3;

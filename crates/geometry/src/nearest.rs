@@ -40,6 +40,12 @@ impl ConvexPolygon {
     /// [`nearest_point`](Self::nearest_point) starting the sector search from `hint`; also returns
     /// the sector `p` was found in, to pass as the hint of the next query.
     pub fn nearest_point_from(&self, p: &Point2<f64>, hint: Sector) -> (Point2<f64>, Sector) {
+        if self.kind() != PolygonKind::Polygon {
+            // What `locate` and `nearest_point_located` would give, with one projection.
+            let nearest = self.nearest_point_degenerate(p);
+            let inside = (nearest - p).norm() <= self.tolerance();
+            return (if inside { *p } else { nearest }, Sector(0));
+        }
         let location = self.locate_from(p, hint);
         (
             self.nearest_point_located(p, location.sector, location.inside),
