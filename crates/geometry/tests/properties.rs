@@ -100,6 +100,34 @@ proptest! {
         ..ProptestConfig::default()
     })]
 
+    /// The clearance of a point is its distance to the boundary by brute force when inside and
+    /// 0 outside, and every point of the disc it spans is inside.
+    #[test]
+    fn clearance_is_the_distance_to_the_boundary(
+        case in polygon_case(),
+        unit in prop::collection::vec((-1.0..1.0f64, -1.0..1.0f64), 8),
+    ) {
+        let polygon = ConvexPolygon::from_points(&case.points).unwrap();
+        let mut points = queries(&polygon, &unit);
+        points.push(polygon.centroid());
+        for p in &points {
+            let clearance = polygon.clearance(p);
+            let rounding = 1e-9 * scale(&polygon, p);
+            if polygon.kind() != PolygonKind::Polygon || !brute_force::contains(&polygon, p) {
+                prop_assert!(clearance <= polygon.tolerance(), "outside, clearance {}", clearance);
+                continue;
+            }
+            let boundary = (brute_force::nearest_on_boundary(&polygon, p) - p).norm();
+            prop_assert!((clearance - boundary).abs() <= rounding,
+                "clearance {} against {} by brute force", clearance, boundary);
+            for &(u, w) in &unit {
+                let direction = Vector2::new(u, w).try_normalize(0.0).unwrap_or(Vector2::x());
+                let q = p + direction * clearance * (1.0 - 1e-12);
+                prop_assert!(brute_force::contains(&polygon, &q), "{:?} left the polygon", q);
+            }
+        }
+    }
+
     #[test]
     fn hull_is_convex_ccw_and_holds_every_input_point(case in polygon_case()) {
         let polygon = ConvexPolygon::from_points(&case.points).unwrap();

@@ -33,7 +33,7 @@ use crate::support::FeatureId;
 pub(crate) const REUSE_TOLERANCE: f64 = 1e-9;
 
 /// Where a body was: centre of mass and orientation.
-type Pose = (Point3<f64>, UnitQuaternion<f64>);
+pub(crate) type Pose = (Point3<f64>, UnitQuaternion<f64>);
 
 /// A row's name across steps: the feature id of the support vertex it acts at (`None` for rows
 /// of the whole contact) and its rank among the contact's rows there.
