@@ -4,6 +4,9 @@
 //! random turns, a pile of 1000 mixed shapes (boxes, spheres, cylinders, hulls), and the tower of
 //! 100 cubes of 2 m. μ = 0.5, 600 steps at dt = 1/60.
 //!
+//! Tatami also runs with sleeping on (islands at rest skip the step; off by default, and off in
+//! Rapier here).
+//!
 //! For each engine: the median whole step, the median of each stage — collision, contact set and
 //! rows, solve, and the rest (position correction and integration for Tatami; Rapier's update) —
 //! and the quality: for pyramids and the tower the largest displacement of any body, for piles the
@@ -208,7 +211,22 @@ fn measure(
 }
 
 fn tatami(scene: &Scene) -> Result<Measured, String> {
-    let world = std::cell::RefCell::new(scene.world().map_err(|e| e.to_string())?);
+    run_tatami(scene, scene.settings)
+}
+
+/// Tatami's defaults with sleeping on (the `--` filter `sleeping` picks it alone).
+fn tatami_sleeping(scene: &Scene) -> Result<Measured, String> {
+    let settings = WorldSettings {
+        sleeping: tatami_world::Sleeping::on(),
+        ..scene.settings
+    };
+    run_tatami(scene, settings)
+}
+
+fn run_tatami(scene: &Scene, settings: WorldSettings) -> Result<Measured, String> {
+    let mut world = scene.world().map_err(|e| e.to_string())?;
+    world.set_settings(settings).map_err(|e| e.to_string())?;
+    let world = std::cell::RefCell::new(world);
     let step = || {
         let mut world = world.borrow_mut();
         world.step(scene.dt).map_err(|e| e.to_string())?;
@@ -378,8 +396,9 @@ fn main() {
         ("1000 mixed shapes dropped", pile(2, mixed)),
         ("tower of 100 cubes of 2 m", tower()),
     ];
-    let engines: [(&str, Engine); 3] = [
+    let engines: [(&str, Engine); 4] = [
         ("tatami defaults", tatami),
+        ("tatami, sleeping on", tatami_sleeping),
         ("rapier3d-f64", rapier_f64),
         ("rapier3d (f32)", rapier_f32),
     ];

@@ -239,6 +239,10 @@ pub struct Body {
     pub(crate) torque: Vector3<f64>,
     /// A kinematic body's pose for the end of the next step: centre of mass and orientation.
     pub(crate) target: Option<(Point3<f64>, UnitQuaternion<f64>)>,
+    /// Asleep (see [`crate::Sleeping`]): not solved, not moved, until woken.
+    pub(crate) asleep: bool,
+    /// How long (s) the body has been slower than the sleeping thresholds.
+    pub(crate) rest_time: f64,
 }
 
 /// How a body moves.
@@ -405,6 +409,8 @@ impl Body {
             force: Vector3::zeros(),
             torque: Vector3::zeros(),
             target: None,
+            asleep: false,
+            rest_time: 0.0,
         })
     }
 
@@ -436,6 +442,30 @@ impl Body {
     /// Collision shape.
     pub fn shape(&self) -> &Shape {
         &self.shape
+    }
+
+    /// Whether the body is asleep: at rest, skipped by the step until something wakes it (only
+    /// with [`Sleeping`](crate::Sleeping) on).
+    pub fn is_asleep(&self) -> bool {
+        self.asleep
+    }
+
+    pub(crate) fn wake(&mut self) {
+        self.asleep = false;
+        self.rest_time = 0.0;
+    }
+
+    pub(crate) fn sleep(&mut self) {
+        self.asleep = true;
+        self.linear_velocity = Vector3::zeros();
+        self.angular_velocity = Vector3::zeros();
+    }
+
+    /// A kinematic body that will move this step (a target or a velocity).
+    pub(crate) fn moves(&self) -> bool {
+        self.target.is_some()
+            || self.linear_velocity != Vector3::zeros()
+            || self.angular_velocity != Vector3::zeros()
     }
 
     /// Whether the body is fixed.

@@ -223,11 +223,12 @@ impl ContactSet {
     pub(crate) fn store(&mut self, model: ContactModel, problem: &Problem<ContactProjection>) {
         for entry in &mut self.entries {
             let state = &mut entry.state;
-            state.impulses.clear();
-            state.model = Some(model);
+            // A pair without rows this step (its bodies asleep) keeps what it had.
             if state.blocks.is_empty() {
                 continue;
             }
+            state.impulses.clear();
+            state.model = Some(model);
             let rows = rows_of(problem, &state.blocks);
             row_keys(model, &state.features, rows.len(), &mut self.keys);
             state.impulses.extend(

@@ -210,6 +210,13 @@ impl World {
     /// [`World::bodies`] move down by one; handles stay valid.
     pub fn remove_body(&mut self, id: BodyId) -> Result<Body, WorldError> {
         let index = self.index_of(id)?;
+        // What rested on it must fall.
+        for contact in self.contact_set.contacts() {
+            let (a, b) = (contact.body_a.0, contact.body_b.0);
+            if a == index || b == index {
+                self.bodies[a + b - index].asleep = false;
+            }
+        }
         self.geometry.remove(index);
         self.contact_set.remove_body(index);
         // The last problem's blocks keep naming the bodies that remain.
@@ -253,9 +260,13 @@ impl World {
         })
     }
 
+    /// Body `id`, woken: every call that changes a body goes through here, so a sleeping body
+    /// (and its island, at the next step) wakes on any change.
     fn body_mut(&mut self, id: BodyId) -> Result<&mut Body, WorldError> {
         let index = self.index_of(id)?;
-        Ok(&mut self.bodies[index])
+        let body = &mut self.bodies[index];
+        body.wake();
+        Ok(body)
     }
 
     /// Body `id` if it is of `kind`.

@@ -13,7 +13,9 @@
 //!
 //! Between steps a program drives the world through [`BodyId`] handles: poses and velocities,
 //! forces, torques and impulses, kinematic bodies ([`BodyDesc::kinematic`]) and their targets,
-//! removal, and each contact's wrench read back ([`World::contact_wrenches`]).
+//! removal, and each contact's wrench read back ([`World::contact_wrenches`]). Bodies at rest
+//! may fall asleep in islands ([`Sleeping`], off by default) and wake on contact or any control
+//! call.
 
 mod body;
 mod broad_phase;
@@ -28,6 +30,7 @@ mod rotation;
 pub mod scene;
 mod settings;
 mod shape;
+mod sleep;
 mod support;
 mod timings;
 mod world;
@@ -41,6 +44,7 @@ pub use builder::{DEFAULT_GRAVITY, GRAVITY_LIMIT, WorldBuilder};
 pub use error::{StepError, WorldError};
 pub use settings::{MAX_ITERATIONS, Solver, WorldSettings};
 pub use shape::{HullMesh, LENGTHS, MassProperties, Shape};
+pub use sleep::Sleeping;
 pub use tatami_contact::{ContactModel, ContactProjection, ContactSettings, FrictionCone};
 pub use tatami_lcp::direct::{DirectInfo, DirectParams};
 pub use tatami_lcp::pgs::{PgsParams, WarmStart};

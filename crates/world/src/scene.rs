@@ -2,7 +2,8 @@
 //! compatibly).
 //!
 //! Beyond DESIGN §6's fields a scene may set `steps`, `solver` (`"pgs"` or `"direct"`),
-//! `warm_start` (on by default) and `shock_propagation` (off by default), `friction_cone` (`"circle"`,
+//! `warm_start` (on by default), `shock_propagation` and `sleeping` (both off by default; see
+//! [`crate::Sleeping`]), `friction_cone` (`"circle"`,
 //! the isotropic default, or `"box"`, the paper's pyramid), `bias_rate`, `slop`,
 //! `max_depenetration_speed` (m/s, > 0) and `max_velocity_bias` (m/s, ≥ 0; see
 //! [`tatami_contact::ContactSettings`]). A body may be `"kinematic": true`: it moves at its
@@ -297,6 +298,8 @@ struct RawScene {
     #[serde(default, deserialize_with = "present")]
     shock_propagation: Option<bool>,
     #[serde(default, deserialize_with = "present")]
+    sleeping: Option<bool>,
+    #[serde(default, deserialize_with = "present")]
     friction_cone: Option<ConeName>,
     #[serde(default, deserialize_with = "fraction")]
     bias_rate: Option<f64>,
@@ -426,6 +429,9 @@ impl RawScene {
             settings.contact.max_velocity_bias = speed.0;
         }
         settings.shock_propagation = self.shock_propagation == Some(true);
+        if self.sleeping == Some(true) {
+            settings.sleeping = crate::Sleeping::on();
+        }
         let given = [
             ("iterations", self.iterations.is_some()),
             ("warm_start", self.warm_start.is_some()),

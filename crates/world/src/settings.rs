@@ -4,7 +4,7 @@ use tatami_contact::{ContactModel, ContactSettings, TwistRadius};
 use tatami_lcp::direct::DirectParams;
 use tatami_lcp::pgs::{PgsParams, WarmStart};
 
-use crate::WorldError;
+use crate::{Sleeping, WorldError};
 
 /// Most PGS sweeps a world accepts: far beyond convergence for any contact problem (the paper
 /// uses 15), and small enough that a step always ends — 2⁶⁴ − 1 sweeps would hang it.
@@ -52,6 +52,9 @@ pub struct WorldSettings {
     /// stacks stand with few sweeps, at the price of momentum in that pass. Off by default (the
     /// paper's solver).
     pub shock_propagation: bool,
+    /// Islands of bodies at rest fall asleep and cost nothing until woken (see [`Sleeping`]).
+    /// Off by default.
+    pub sleeping: Sleeping,
 }
 
 impl Default for WorldSettings {
@@ -63,6 +66,7 @@ impl Default for WorldSettings {
             contact_margin: 0.005,
             feature_angle: 1f64.to_radians(),
             shock_propagation: false,
+            sleeping: Sleeping::default(),
         }
     }
 }
@@ -125,6 +129,20 @@ impl WorldSettings {
             angle > 0.0 && angle < std::f64::consts::FRAC_PI_4,
             "in (0, π/4) rad",
         )?;
+        let sleeping = &self.sleeping;
+        check(
+            "sleeping.linear_speed",
+            sleeping.linear_speed,
+            sleeping.linear_speed >= 0.0,
+            "≥ 0",
+        )?;
+        check(
+            "sleeping.angular_speed",
+            sleeping.angular_speed,
+            sleeping.angular_speed >= 0.0,
+            "≥ 0",
+        )?;
+        check("sleeping.time", sleeping.time, sleeping.time >= 0.0, "≥ 0")?;
         if let TwistRadius::Grid { spacing } = c.twist_radius {
             check("twist_radius.spacing", spacing, spacing > 0.0, "> 0 m")?;
         }

@@ -13,6 +13,7 @@ use crate::body::{BodyKind, Motion};
 use crate::collision::{self, BodyGeometry, CollisionWorkspace};
 use crate::contact_set::ContactSet;
 use crate::parry_bridge::Collider;
+use crate::sleep::Islands;
 use crate::support::Outline;
 use crate::{
     Body, BodyDesc, BodyId, Solver, StepError, StepTimings, WorldBuilder, WorldError, WorldSettings,
@@ -51,6 +52,8 @@ pub struct World {
     /// without biases.
     pub(crate) correction: Problem<ContactProjection>,
     collision_workspace: CollisionWorkspace,
+    /// The islands of touching dynamic bodies, for sleeping.
+    islands: Islands,
     pgs_workspace: PgsWorkspace,
     timings: StepTimings,
     time: f64,
@@ -83,6 +86,7 @@ impl World {
             correction: Problem::default(),
             motions: Vec::new(),
             collision_workspace: CollisionWorkspace::default(),
+            islands: Islands::default(),
             pgs_workspace: PgsWorkspace::default(),
             timings: StepTimings::default(),
             time: 0.0,
@@ -227,6 +231,7 @@ impl World {
         check_time_step(dt)?;
         let start = Instant::now();
         self.detect();
+        self.wake_islands();
         let collided = Instant::now();
         self.build_problem(dt)?;
         let built = Instant::now();
@@ -235,6 +240,7 @@ impl World {
         self.correct_penetration()?;
         let corrected = Instant::now();
         self.integrate(dt)?;
+        self.fall_asleep(dt);
         let integrated = Instant::now();
         self.timings = StepTimings {
             collision: collided - start,
@@ -271,8 +277,28 @@ impl World {
     pub fn prepare_step(&mut self, dt: f64) -> Result<&Problem<ContactProjection>, StepError> {
         check_time_step(dt)?;
         self.detect();
+        self.wake_islands();
         self.build_problem(dt)?;
         Ok(&self.problem)
+    }
+
+    /// Sleeping: wakes every island with a body awake or a moving kinematic body touching it;
+    /// with sleeping off, wakes every body.
+    fn wake_islands(&mut self) {
+        if self.settings.sleeping.enabled {
+            self.islands
+                .wake(&mut self.bodies, self.contact_set.contacts());
+        } else {
+            self.bodies.iter_mut().for_each(Body::wake);
+        }
+    }
+
+    /// Sleeping: puts to sleep the islands that have rested long enough.
+    fn fall_asleep(&mut self, dt: f64) {
+        if self.settings.sleeping.enabled {
+            self.islands
+                .fall_asleep(&mut self.bodies, &self.settings.sleeping, dt);
+        }
     }
 
     /// Collision: the contact set brought to the current positions, highest contact first.
@@ -302,7 +328,10 @@ impl World {
         let pairs = self.contact_set.contacts().len();
         for index in 0..pairs {
             let first = problem.blocks.len();
-            if let Some((contact, _)) = self.contact_set.get(index) {
+            if let Some((contact, _)) = self.contact_set.get(index)
+                && !self.bodies[contact.body_a.0].asleep
+                && !self.bodies[contact.body_b.0].asleep
+            {
                 self.settings
                     .model
                     .build_split(contact, dt, &contact_settings, problem, &mut self.biases)
@@ -317,6 +346,7 @@ impl World {
         // Gravity's impulse and the applied forces'; a kinematic body's target sets its velocity.
         for (solver_body, body) in problem.bodies.iter_mut().zip(&self.bodies) {
             match body.kind() {
+                BodyKind::Dynamic if body.asleep => {}
                 BodyKind::Dynamic => {
                     solver_body.linear_velocity += (self.gravity + body.force / body.mass()) * dt;
                     solver_body.angular_velocity +=
@@ -463,7 +493,7 @@ impl World {
         let corrections = &self.correction.bodies;
         self.motions.clear();
         for (index, (body, solved)) in self.bodies.iter().zip(&self.problem.bodies).enumerate() {
-            if body.is_fixed() {
+            if body.is_fixed() || body.asleep {
                 continue;
             }
             let motion = body.motion(solved, corrections.get(index), dt);

@@ -169,13 +169,15 @@ fn malformed_json_and_missing_files_are_errors() {
 fn solver_options_are_read() {
     let text = scene_with(
         4,
-        r#"  "model": "face", "warm_start": true, "shock_propagation": true,"#,
+        r#"  "model": "face", "warm_start": true, "shock_propagation": true, "sleeping": true,"#,
     );
     let scene = Scene::from_json(&text).unwrap();
     assert!(scene.settings.shock_propagation);
+    assert!(scene.settings.sleeping.enabled);
     assert_eq!(scene.settings.model, tatami_world::ContactModel::Face);
     let plain = Scene::from_json(&scene_with(0, "")).unwrap();
     assert!(!plain.settings.shock_propagation, "off unless asked for");
+    assert!(!plain.settings.sleeping.enabled, "off unless asked for");
 }
 
 #[test]
