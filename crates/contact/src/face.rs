@@ -11,7 +11,7 @@
 //! A point support thus carries no torque, a segment only tilt about itself and its line twist.
 
 use nalgebra::Point2;
-use tatami_geometry::{ConvexPolygon, Sector};
+use tatami_geometry::{ConvexPolygon, PolygonKind, Sector};
 use tatami_lcp::{Block, LinearSet, Problem, Projection, Row, RowBound};
 
 use crate::jacobian::{angular_jacobian, point_jacobian, point_motion, twist_rate};
@@ -110,6 +110,38 @@ impl Projection for FaceProjection {
 
     fn tangent_pair(&self) -> Option<usize> {
         self.cone.tangent_pair(FRICTION_1)
+    }
+
+    /// A face of area: its six rows are solved together while the contact sticks with its
+    /// centre of pressure inside. Not a point or a segment, whose tilt torques are bounded to
+    /// zero or to a line, so a free step would always leave the set.
+    fn whole_block(&self) -> bool {
+        self.support.kind() == PolygonKind::Polygon && !self.remove_parallel_torque
+    }
+
+    fn admissible(&mut self, impulses: &[f64]) -> bool {
+        // Loaded (which a NaN is not), so the centre of pressure is defined.
+        let Some(p) = Self::centre_of_pressure(impulses) else {
+            return false;
+        };
+        let f3 = impulses[NORMAL];
+        let limit = self.friction * f3;
+        let (f1, f2) = (impulses[FRICTION_1], impulses[FRICTION_1 + 1]);
+        let within_cone = match self.cone {
+            FrictionCone::Box => f1.abs() <= limit && f2.abs() <= limit,
+            FrictionCone::Circle => f1 * f1 + f2 * f2 <= limit * limit,
+        };
+        if !within_cone || impulses[TWIST].abs() > self.twist_per_normal * f3 {
+            return false;
+        }
+        if p.coords.norm_squared() < self.clearance * self.clearance {
+            return true;
+        }
+        let location = self
+            .support
+            .locate_from(&(self.centre + p.coords), self.hint);
+        self.hint = location.sector;
+        location.inside
     }
 
     /// Only the normal row is a plain bound: the torques' ZMP constraint is not a product of row

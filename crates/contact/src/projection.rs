@@ -34,6 +34,20 @@ impl Projection for ContactProjection {
         }
     }
 
+    fn whole_block(&self) -> bool {
+        match self {
+            Self::Face(p) => p.whole_block(),
+            Self::Point(_) | Self::Patch(_) => false,
+        }
+    }
+
+    fn admissible(&mut self, impulses: &[f64]) -> bool {
+        match self {
+            Self::Face(p) => p.admissible(impulses),
+            Self::Point(_) | Self::Patch(_) => false,
+        }
+    }
+
     fn bound(&self, row: usize) -> Option<RowBound> {
         match self {
             Self::Point(p) => p.bound(row),

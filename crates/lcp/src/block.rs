@@ -69,6 +69,22 @@ pub trait Projection {
         None
     }
 
+    /// Whether PGS should first try the whole block at once (see [`crate::pgs`]): solve its
+    /// rows together with the block's own effective mass `K⁻¹`, and keep that step when it
+    /// lands in the admissible set ([`admissible`](Projection::admissible)). Blocks of at most
+    /// [`crate::pgs::WHOLE_BLOCK_ROWS`] rows only. `false` by default.
+    fn whole_block(&self) -> bool {
+        false
+    }
+
+    /// Whether `impulses` lie in the admissible set already, so [`project`](Projection::project)
+    /// would leave them as they are. Only asked of blocks that say
+    /// [`whole_block`](Projection::whole_block); `false` by default.
+    fn admissible(&mut self, impulses: &[f64]) -> bool {
+        let _ = impulses;
+        false
+    }
+
     /// Row `row`'s bound, if the admissible set is a product of row bounds; `None` otherwise.
     fn bound(&self, row: usize) -> Option<RowBound>;
 

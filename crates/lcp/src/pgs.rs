@@ -25,6 +25,18 @@
 //! Coulomb's maximal dissipation. The Newton step `Δλ = −K⁻¹e` was rejected: its fixed point is
 //! `λ ∥ −K⁻¹e`, off the slip direction wherever `K` is not isotropic (a cube's corner).
 //!
+//! **Whole blocks.** A block that asks for it ([`Projection::whole_block`]: the face model's
+//! faces) and whose impulses are admissible is first stepped whole, `Δλ = −ω K⁻¹ e` with `K` its
+//! own 6 × 6 block of `A` (inverted once per solve), and the step is kept if it stays admissible
+//! — the sticking face with its centre of pressure inside, by far the commonest case, is then
+//! solved exactly for its neighbours' current velocities in one update. Otherwise the block is
+//! updated row by row as above. This does not move the fixed points: where the whole step is
+//! kept, the row-by-row update converges to the same block solution; where a bound is active,
+//! the row-by-row update decides (the Newton step's fixed point would be off Coulomb's slip
+//! direction, see above). On the holding scenes it lowered the drift (leaning stack 0.38 →
+//! 0.25 mm, pyramid of 55 1.7 → 1.3 mm, the 820-cube pyramid's largest displacement 14.5 → 10.6
+//! cm) at the same cost per sweep.
+//!
 //! Decision record: the projection sees the whole block, not one row, because the face model's
 //! centre of pressure couples three rows (τ₁, τ₂, f₃) and cannot be clamped one row at a time.
 //! Box2D relaxes and warm-starts; Jolt warm-starts; the paper does neither, so both are options
@@ -33,7 +45,7 @@
 
 use std::ops::Range;
 
-use nalgebra::Vector3;
+use nalgebra::{Matrix6, Vector3, Vector6};
 
 use crate::{Jacobian, LcpError, Problem, Projection, SolverBody};
 
@@ -115,10 +127,16 @@ struct RowResponse {
     coupling: f64,
 }
 
+/// Most rows of a block PGS solves whole ([`Projection::whole_block`]): a contact face's six.
+pub const WHOLE_BLOCK_ROWS: usize = 6;
+
 /// Buffers reused across solves so sweeps allocate nothing.
 #[derive(Debug, Clone, Default)]
 pub struct PgsWorkspace {
     responses: Vec<RowResponse>,
+    /// Per block: `K⁻¹` of a block solved whole (padded with the identity to 6 × 6), if it
+    /// asks for it and its `K` is positive definite.
+    whole: Vec<Option<Matrix6<f64>>>,
     block_impulse: Vec<f64>,
     /// The block's impulses as already pushed into the velocities.
     block_applied: Vec<f64>,
@@ -173,15 +191,14 @@ fn prepare<P: Projection>(
     let widest = blocks.iter().map(|b| b.rows.len()).max().unwrap_or(0);
     workspace.block_impulse.resize(widest, 0.0);
     workspace.block_applied.resize(widest, 0.0);
+    workspace.whole.clear();
     for block in blocks.iter() {
         let (a, b) = (bodies[block.body_a.0], bodies[block.body_b.0]);
-        responses_of(
-            block,
-            rows,
-            &a,
-            &b,
-            &mut workspace.responses[block.rows.clone()],
-        );
+        let responses = &mut workspace.responses[block.rows.clone()];
+        responses_of(block, rows, &a, &b, responses);
+        workspace
+            .whole
+            .push(whole_block_inverse(block, rows, responses));
         for r in block.rows.clone() {
             let response = workspace.responses[r];
             match warm_start {
@@ -204,10 +221,94 @@ fn sweep<P: Projection>(
     let mut largest_change: f64 = 0.0;
     for index in 0..problem.blocks.len() {
         let rows = problem.blocks[index].rows.clone();
-        let change = update_block(problem, workspace, index, rows, relaxation)?;
+        let whole = match &workspace.whole[index] {
+            Some(inverse) => update_whole_block(problem, workspace, index, inverse, relaxation)?,
+            None => None,
+        };
+        let change = match whole {
+            Some(change) => change,
+            None => update_block(problem, workspace, index, rows, relaxation)?,
+        };
         largest_change = largest_change.max(change);
     }
     Ok(largest_change)
+}
+
+/// `K⁻¹`, with `K = J M⁻¹ Jᵀ` a block's own part of `A` (padded with the identity to 6 × 6),
+/// for a block PGS solves whole; `None` for other blocks or a `K` that is not positive
+/// definite. Inverted once per solve, it costs one 6 × 6 product per update.
+fn whole_block_inverse<P: Projection>(
+    block: &crate::Block<P>,
+    rows: &[crate::Row],
+    responses: &[RowResponse],
+) -> Option<Matrix6<f64>> {
+    let n = block.rows.len();
+    if !block.projection.whole_block() || n > WHOLE_BLOCK_ROWS {
+        return None;
+    }
+    let rows = &rows[block.rows.clone()];
+    let mut k = Matrix6::identity();
+    for i in 0..n {
+        for j in 0..n {
+            k[(i, j)] = along(&rows[i].jacobian, &responses[j]);
+        }
+    }
+    k.cholesky().map(|c| c.inverse())
+}
+
+/// The whole-block step, for a block whose impulses `λ` are admissible: `Δλ = −ω K⁻¹ e` for
+/// its velocity errors `e`, kept only if `λ + Δλ` is admissible too, when it is the exact solution of the block with its neighbours held
+/// (one step where row-by-row updates converge over sweeps). Otherwise nothing changes and
+/// `None` sends the block to the row-by-row update. Either way a fixed point is one of the
+/// row-by-row update's: at a fixed point with every bound inactive `e = 0` and `Δλ = 0`.
+fn update_whole_block<P: Projection>(
+    problem: &mut Problem<P>,
+    workspace: &PgsWorkspace,
+    index: usize,
+    inverse: &Matrix6<f64>,
+    relaxation: f64,
+) -> Result<Option<f64>, LcpError> {
+    let Problem {
+        bodies,
+        rows,
+        blocks,
+    } = problem;
+    let block = &mut blocks[index];
+    let (ia, ib) = (block.body_a.0, block.body_b.0);
+    let responses = &workspace.responses[block.rows.clone()];
+    let rows = &mut rows[block.rows.clone()];
+    // Only a block that is inside its set now: one at a bound (sliding, tipping, just touching)
+    // would mostly leave it again, and pay for both updates.
+    let mut trial = [0.0; WHOLE_BLOCK_ROWS];
+    for (k, row) in rows.iter().enumerate() {
+        trial[k] = row.impulse;
+    }
+    if !block.projection.admissible(&trial[..rows.len()]) {
+        return Ok(None);
+    }
+    let mut error = Vector6::zeros();
+    for (e, row) in error.iter_mut().zip(rows.iter()) {
+        *e = row.jacobian.velocity(&bodies[ia], &bodies[ib]) - row.target;
+    }
+    let delta = inverse * error * -relaxation;
+    for (k, row) in rows.iter().enumerate() {
+        trial[k] = row.impulse + delta[k];
+    }
+    if !block.projection.admissible(&trial[..rows.len()]) {
+        return Ok(None);
+    }
+    let mut largest_change: f64 = 0.0;
+    for (k, row) in rows.iter_mut().enumerate() {
+        if delta[k] != 0.0 {
+            if !delta[k].is_finite() {
+                return Err(LcpError::NonFinite { block: index });
+            }
+            apply(bodies, ia, ib, &responses[k], delta[k]);
+        }
+        largest_change = largest_change.max(delta[k].abs());
+        row.impulse = trial[k];
+    }
+    Ok(Some(largest_change))
 }
 
 /// Updates the rows of block `index` once each (a friction pair as one 2-D step), with the
