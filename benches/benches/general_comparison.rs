@@ -19,7 +19,7 @@
 use std::time::{Duration, Instant};
 
 use nalgebra::{Point3, Quaternion, UnitQuaternion, Vector3};
-use tatami_world::dropped::Random;
+use tatami_world::dropped::{Random, mixed_shape};
 use tatami_world::scene::Scene;
 use tatami_world::{BodyDesc, Shape, WorldSettings};
 
@@ -93,29 +93,6 @@ fn pile(seed: u64, shapes: impl Fn(&mut Random, usize) -> Shape) -> Scene {
         );
     }
     scene(bodies)
-}
-
-fn mixed(random: &mut Random, k: usize) -> Shape {
-    match k % 4 {
-        0 => Shape::cuboid([
-            random.between(0.4, 1.0),
-            random.between(0.4, 1.0),
-            random.between(0.4, 1.0),
-        ]),
-        1 => Shape::sphere(random.between(0.25, 0.5)),
-        2 => Shape::cylinder(random.between(0.25, 0.5), random.between(0.4, 1.0)),
-        _ => Shape::convex(
-            (0..10)
-                .map(|_| {
-                    Point3::new(
-                        random.between(-0.5, 0.5),
-                        random.between(-0.5, 0.5),
-                        random.between(-0.5, 0.5),
-                    )
-                })
-                .collect(),
-        ),
-    }
 }
 
 fn tower() -> Scene {
@@ -393,7 +370,7 @@ fn main() {
             "1000 cubes dropped",
             pile(1, |_, _| Shape::cuboid([1.0; 3])),
         ),
-        ("1000 mixed shapes dropped", pile(2, mixed)),
+        ("1000 mixed shapes dropped", pile(2, mixed_shape)),
         ("tower of 100 cubes of 2 m", tower()),
     ];
     let engines: [(&str, Engine); 4] = [

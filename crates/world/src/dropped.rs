@@ -48,6 +48,39 @@ impl Random {
     }
 }
 
+/// Shape `k` of a pile of mixed shapes, in turn a box, a sphere, a cylinder and a hull of 10
+/// random points, each sized at random within a 1 m cube — the piles that the benchmarks
+/// measure beside Rapier and the tests run on more than one thread.
+///
+/// ```
+/// use tatami_world::Shape;
+/// use tatami_world::dropped::{Random, mixed_shape};
+/// let mut random = Random::new(1);
+/// assert!(matches!(mixed_shape(&mut random, 5), Shape::Sphere { .. }));
+/// ```
+pub fn mixed_shape(random: &mut Random, k: usize) -> Shape {
+    match k % 4 {
+        0 => Shape::cuboid([
+            random.between(0.4, 1.0),
+            random.between(0.4, 1.0),
+            random.between(0.4, 1.0),
+        ]),
+        1 => Shape::sphere(random.between(0.25, 0.5)),
+        2 => Shape::cylinder(random.between(0.25, 0.5), random.between(0.4, 1.0)),
+        _ => Shape::convex(
+            (0..10)
+                .map(|_| {
+                    Point3::new(
+                        random.between(-0.5, 0.5),
+                        random.between(-0.5, 0.5),
+                        random.between(-0.5, 0.5),
+                    )
+                })
+                .collect(),
+        ),
+    }
+}
+
 /// A random shape no wider than 1.6 m, and points of its surface (the vertices; for round
 /// shapes, points of their rims) from which its extent along any direction follows.
 fn shape(random: &mut Random) -> (Shape, Vec<Vector3<f64>>) {

@@ -2,7 +2,7 @@
 //! compatibly).
 //!
 //! Beyond DESIGN §6's fields a scene may set `steps`, `solver` (`"pgs"` or `"direct"`),
-//! `warm_start` (on by default), `shock_propagation` and `sleeping` (both off by default; see
+//! `warm_start` and `shock_propagation` (both on by default), `sleeping` (off by default; see
 //! [`crate::Sleeping`]), `friction_cone` (`"circle"`,
 //! the isotropic default, or `"box"`, the paper's pyramid), `bias_rate`, `slop`,
 //! `max_depenetration_speed` (m/s, > 0) and `max_velocity_bias` (m/s, ≥ 0; see
@@ -428,7 +428,9 @@ impl RawScene {
         if let Some(speed) = self.max_velocity_bias {
             settings.contact.max_velocity_bias = speed.0;
         }
-        settings.shock_propagation = self.shock_propagation == Some(true);
+        if let Some(on) = self.shock_propagation {
+            settings.shock_propagation = on;
+        }
         if self.sleeping == Some(true) {
             settings.sleeping = crate::Sleeping::on();
         }

@@ -49,8 +49,9 @@ pub struct WorldSettings {
     pub feature_angle: f64,
     /// After each PGS solve, one more pass from the ground up in which every contact's lower
     /// body is held still ([`pgs::shock_propagation`](tatami_lcp::pgs::shock_propagation)):
-    /// stacks stand with few sweeps, at the price of momentum in that pass. Off by default (the
-    /// paper's solver).
+    /// a stack's weight reaches the floor in one pass instead of one level per sweep. The pass
+    /// is kept only if it leaves the bodies with no more kinetic energy than the sweeps did, so
+    /// it can stop a stack but never launch one. On by default.
     pub shock_propagation: bool,
     /// Islands of bodies at rest fall asleep and cost nothing until woken (see [`Sleeping`]).
     /// Off by default.
@@ -65,7 +66,7 @@ impl Default for WorldSettings {
             contact: ContactSettings::default(),
             contact_margin: 0.005,
             feature_angle: 1f64.to_radians(),
-            shock_propagation: false,
+            shock_propagation: true,
             sleeping: Sleeping::default(),
         }
     }

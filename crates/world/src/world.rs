@@ -54,6 +54,9 @@ pub struct World {
     collision_workspace: CollisionWorkspace,
     /// The islands of touching dynamic bodies, for sleeping.
     islands: Islands,
+    /// Scratch: the velocity solve's bodies and impulses, restored if the shock pass would add
+    /// energy.
+    shock_backup: (Vec<tatami_lcp::SolverBody>, Vec<f64>),
     pgs_workspace: PgsWorkspace,
     timings: StepTimings,
     time: f64,
@@ -87,6 +90,7 @@ impl World {
             motions: Vec::new(),
             collision_workspace: CollisionWorkspace::default(),
             islands: Islands::default(),
+            shock_backup: Default::default(),
             pgs_workspace: PgsWorkspace::default(),
             timings: StepTimings::default(),
             time: 0.0,
@@ -378,11 +382,7 @@ impl World {
                     pgs::solve_in_place(&mut self.problem, &mut self.pgs_workspace, params)
                         .map(drop);
                 if self.settings.shock_propagation && result.is_ok() {
-                    result = pgs::shock_propagation(
-                        &mut self.problem,
-                        &mut self.pgs_workspace,
-                        self.contact_set.shock_order(&self.gravity),
-                    );
+                    result = self.guarded_shock_pass();
                 }
                 result
             }
@@ -394,6 +394,43 @@ impl World {
             pair: self.contact_of_error(&source),
             source,
         })
+    }
+
+    /// The shock pass after the velocity solve, kept only if it leaves the bodies with no more
+    /// kinetic energy than the solve did: held still, a supporting body does not feel the
+    /// pass's reactions, which can push its load up as if off a fixed floor; undone then, the
+    /// pass can only take energy out (a falling stack stopped on its base).
+    fn guarded_shock_pass(&mut self) -> Result<(), LcpError> {
+        let energy = |bodies: &[Body], solved: &[tatami_lcp::SolverBody]| -> f64 {
+            bodies
+                .iter()
+                .zip(solved)
+                .filter(|(b, _)| b.is_dynamic())
+                .map(|(b, s)| {
+                    let w = s.angular_velocity;
+                    0.5 * b.mass() * s.linear_velocity.norm_squared()
+                        + 0.5 * w.dot(&(b.inertia_world() * w))
+                })
+                .sum()
+        };
+        let before = energy(&self.bodies, &self.problem.bodies);
+        self.shock_backup.0.clone_from(&self.problem.bodies);
+        self.shock_backup.1.clear();
+        self.shock_backup
+            .1
+            .extend(self.problem.rows.iter().map(|r| r.impulse));
+        pgs::shock_propagation(
+            &mut self.problem,
+            &mut self.pgs_workspace,
+            self.contact_set.shock_order(&self.gravity),
+        )?;
+        if energy(&self.bodies, &self.problem.bodies) > before {
+            self.problem.bodies.clone_from(&self.shock_backup.0);
+            for (row, &impulse) in self.problem.rows.iter_mut().zip(&self.shock_backup.1) {
+                row.impulse = impulse;
+            }
+        }
+        Ok(())
     }
 
     /// The position pass of split impulses: when a contact's push exceeds what the velocity

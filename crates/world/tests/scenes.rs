@@ -176,8 +176,10 @@ fn solver_options_are_read() {
     assert!(scene.settings.sleeping.enabled);
     assert_eq!(scene.settings.model, tatami_world::ContactModel::Face);
     let plain = Scene::from_json(&scene_with(0, "")).unwrap();
-    assert!(!plain.settings.shock_propagation, "off unless asked for");
+    assert!(plain.settings.shock_propagation, "on unless switched off");
     assert!(!plain.settings.sleeping.enabled, "off unless asked for");
+    let without = Scene::from_json(&scene_with(4, r#"  "shock_propagation": false,"#)).unwrap();
+    assert!(!without.settings.shock_propagation);
 }
 
 #[test]

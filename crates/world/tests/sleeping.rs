@@ -32,6 +32,19 @@ fn steps(world: &mut World, seconds: f64) {
     }
 }
 
+/// Two unit cubes stacked on the floor, asleep after 1 s.
+fn sleeping_stack() -> World {
+    let mut world = World::builder()
+        .settings(sleepy())
+        .body(floor())
+        .body(unit_cube("bottom", [0.0, 0.0, 0.5]))
+        .body(unit_cube("top", [0.0, 0.0, 1.5]))
+        .build()
+        .unwrap();
+    steps(&mut world, 1.0);
+    world
+}
+
 fn asleep(world: &World, name: &str) -> bool {
     world.body(name).unwrap().is_asleep()
 }
@@ -129,14 +142,7 @@ fn cubes_on_a_shared_floor_sleep_apart() {
 /// step it lands, and the ball's blow moves them.
 #[test]
 fn a_landing_body_wakes_the_island_it_hits() {
-    let mut world = World::builder()
-        .settings(sleepy())
-        .body(floor())
-        .body(unit_cube("bottom", [0.0, 0.0, 0.5]))
-        .body(unit_cube("top", [0.0, 0.0, 1.5]))
-        .build()
-        .unwrap();
-    steps(&mut world, 1.0);
+    let mut world = sleeping_stack();
     assert!(asleep(&world, "bottom") && asleep(&world, "top"));
     let ball = world
         .add_body(
@@ -168,14 +174,7 @@ fn a_landing_body_wakes_the_island_it_hits() {
 /// Removing the bottom of a sleeping stack wakes the cube on it, which falls to the floor.
 #[test]
 fn removing_the_support_wakes_what_rests_on_it() {
-    let mut world = World::builder()
-        .settings(sleepy())
-        .body(floor())
-        .body(unit_cube("bottom", [0.0, 0.0, 0.5]))
-        .body(unit_cube("top", [0.0, 0.0, 1.5]))
-        .build()
-        .unwrap();
-    steps(&mut world, 1.0);
+    let mut world = sleeping_stack();
     assert!(asleep(&world, "top"));
     let bottom = world.body("bottom").unwrap().id();
     world.remove_body(bottom).unwrap();

@@ -2,8 +2,8 @@
 //! core, each as a function of its two bodies alone, and written into the contact set in pair
 //! order.
 
-use nalgebra::{Point3, UnitQuaternion, Vector3};
-use tatami_world::dropped::Random;
+use nalgebra::{UnitQuaternion, Vector3};
+use tatami_world::dropped::{Random, mixed_shape};
 use tatami_world::{BodyDesc, Shape, World};
 
 /// 192 bodies of every shape (box, sphere, cylinder, hull), turned at random, dropped in three
@@ -17,22 +17,7 @@ fn pile() -> World {
             .position([0.0, 0.0, -1.0]),
     );
     for k in 0..192 {
-        let shape = match k % 4 {
-            0 => Shape::cuboid([random.between(0.4, 1.0), 0.7, random.between(0.4, 1.0)]),
-            1 => Shape::sphere(random.between(0.25, 0.5)),
-            2 => Shape::cylinder(random.between(0.25, 0.5), random.between(0.4, 1.0)),
-            _ => Shape::convex(
-                (0..10)
-                    .map(|_| {
-                        Point3::new(
-                            random.between(-0.5, 0.5),
-                            random.between(-0.5, 0.5),
-                            random.between(-0.5, 0.5),
-                        )
-                    })
-                    .collect(),
-            ),
-        };
+        let shape = mixed_shape(&mut random, k);
         let (layer, cell) = (k / 64, k % 64);
         let turn = Vector3::new(random.unit(), random.unit(), random.unit()) * 3.0;
         builder = builder.body(
