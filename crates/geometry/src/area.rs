@@ -186,7 +186,9 @@ fn fan_triangle_distance_integral(c: &Point2<f64>, a: &Point2<f64>, b: &Point2<f
         return 0.0;
     }
     let (s1, s2) = ((a - c).dot(&t), (b - c).dot(&t));
-    let (r1, r2) = (s1.hypot(d), s2.hypot(d));
+    // Lengths are bounded far below √f64::MAX, so the plain root (faster than `hypot`) cannot
+    // overflow.
+    let (r1, r2) = ((s1 * s1 + d * d).sqrt(), (s2 * s2 + d * d).sqrt());
     // The primitive is P(s) = d s r + d³ asinh(s/d), r = √(s² + d²); the integral is
     // (P(s₂) − P(s₁))/6. For a far `c`, P(s₁) and P(s₂) are both of size |c|³ while their
     // difference is |c|²·len, so the differences are rewritten without subtracting: with

@@ -83,6 +83,10 @@ pub enum Record {
 pub struct PgsParams {
     /// Sweeps; see [`DEFAULT_ITERATIONS`].
     pub iterations: usize,
+    /// Stop before `iterations` after a sweep in which every row's update changed that row's own
+    /// velocity by less than this (`|Δλ| · J M⁻¹ Jᵀ`: m/s, or rad/s for angular rows). 0, the
+    /// default here and the paper's setting, runs every sweep.
+    pub tolerance: f64,
     /// Relaxation ω in (0, 2); see [`DEFAULT_RELAXATION`].
     pub relaxation: f64,
     /// See [`WarmStart`]; off by default, as in the paper.
@@ -95,6 +99,7 @@ impl Default for PgsParams {
     fn default() -> Self {
         Self {
             iterations: DEFAULT_ITERATIONS,
+            tolerance: 0.0,
             relaxation: DEFAULT_RELAXATION,
             warm_start: WarmStart::Off,
             record: Record::Nothing,
@@ -105,7 +110,7 @@ impl Default for PgsParams {
 /// What a solve did.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct PgsInfo {
-    /// Sweeps run.
+    /// Sweeps run: `iterations`, or fewer when the solve met its `tolerance`.
     pub sweeps: usize,
     /// Row updates made (`sweeps × rows`), for throughput figures.
     pub row_updates: usize,
@@ -139,9 +144,9 @@ enum Whole {
     /// set once in this solve (a block at a bound — sliding, tipping, parting — stays there for
     /// a while, and would pay for both updates every sweep).
     No,
-    /// Not tried yet in this solve; `K⁻¹` is computed when it is.
+    /// Not tried yet in this solve; `K` is factored when it is.
     Untried,
-    /// `K⁻¹` is in [`PgsWorkspace::inverses`].
+    /// `K`'s Cholesky factor is in [`PgsWorkspace::factors`].
     Ready,
 }
 
@@ -151,9 +156,9 @@ pub struct PgsWorkspace {
     responses: Vec<RowResponse>,
     /// Per block: how it is stepped whole in this solve.
     whole: Vec<Whole>,
-    /// Per block: `K⁻¹` (padded with the identity to 6 × 6) where `whole` says `Ready`. Only
-    /// grown, never cleared: entries are written before they are read.
-    inverses: Vec<Matrix6<f64>>,
+    /// Per block: `L` of `K = L Lᵀ` (`K` padded with the identity to 6 × 6) where `whole`
+    /// says `Ready`. Only grown, never cleared: entries are written before they are read.
+    factors: Vec<Matrix6<f64>>,
     block_impulse: Vec<f64>,
     /// The block's impulses as already pushed into the velocities.
     block_applied: Vec<f64>,
@@ -174,18 +179,23 @@ pub fn solve_in_place<P: Projection>(
     prepare(problem, workspace, params.warm_start);
     let mut info = PgsInfo {
         sweeps: params.iterations,
-        row_updates: params.iterations.saturating_mul(problem.rows.len()),
+        row_updates: 0,
         impulse_change: Vec::new(),
     };
     if params.record == Record::ImpulseChange {
         info.impulse_change.reserve_exact(params.iterations);
     }
-    for _ in 0..params.iterations {
+    for sweeps in 1..=params.iterations {
         let change = sweep(problem, workspace, params.relaxation)?;
         if params.record == Record::ImpulseChange {
-            info.impulse_change.push(change);
+            info.impulse_change.push(change.impulse);
+        }
+        if change.velocity < params.tolerance {
+            info.sweeps = sweeps;
+            break;
         }
     }
+    info.row_updates = info.sweeps.saturating_mul(problem.rows.len());
     problem.validate_bodies()?;
     Ok(info)
 }
@@ -209,8 +219,8 @@ fn prepare<P: Projection>(
     workspace.block_impulse.resize(widest, 0.0);
     workspace.block_applied.resize(widest, 0.0);
     workspace.whole.clear();
-    if workspace.inverses.len() < blocks.len() {
-        workspace.inverses.resize(blocks.len(), Matrix6::zeros());
+    if workspace.factors.len() < blocks.len() {
+        workspace.factors.resize(blocks.len(), Matrix6::zeros());
     }
     for block in blocks.iter() {
         let (a, b) = (bodies[block.body_a.0], bodies[block.body_b.0]);
@@ -233,19 +243,43 @@ fn prepare<P: Projection>(
     }
 }
 
-/// One Gauss–Seidel pass over every block; returns `max |Δλ|` of the pass.
+/// How much a sweep, or one block's update, changed the impulses.
+#[derive(Debug, Clone, Copy, Default)]
+struct Change {
+    /// `max |Δλ|`.
+    impulse: f64,
+    /// `max |Δλ| · k` over the rows, `k = J M⁻¹ Jᵀ` the row's own entry of `A`: the largest
+    /// change of a row's velocity by its own update.
+    velocity: f64,
+}
+
+impl Change {
+    fn add(&mut self, delta: f64, response: &RowResponse) {
+        self.impulse = self.impulse.max(delta.abs());
+        self.velocity = self.velocity.max(delta.abs() * response.inverse_mass);
+    }
+
+    fn max(self, other: Change) -> Change {
+        Change {
+            impulse: self.impulse.max(other.impulse),
+            velocity: self.velocity.max(other.velocity),
+        }
+    }
+}
+
+/// One Gauss–Seidel pass over every block; returns how much it changed the impulses.
 fn sweep<P: Projection>(
     problem: &mut Problem<P>,
     workspace: &mut PgsWorkspace,
     relaxation: f64,
-) -> Result<f64, LcpError> {
-    let mut largest_change: f64 = 0.0;
+) -> Result<Change, LcpError> {
+    let mut largest_change = Change::default();
     for index in 0..problem.blocks.len() {
         let rows = problem.blocks[index].rows.clone();
         if let Whole::Untried = workspace.whole[index] {
-            workspace.whole[index] = match whole_block_inverse(problem, workspace, index) {
-                Some(inverse) => {
-                    workspace.inverses[index] = inverse;
+            workspace.whole[index] = match whole_block_factor(problem, workspace, index) {
+                Some(factor) => {
+                    workspace.factors[index] = factor;
                     Whole::Ready
                 }
                 None => Whole::No,
@@ -253,8 +287,8 @@ fn sweep<P: Projection>(
         }
         let whole = match workspace.whole[index] {
             Whole::Ready => {
-                let inverse = workspace.inverses[index];
-                let step = update_whole_block(problem, workspace, index, &inverse, relaxation)?;
+                let factor = workspace.factors[index];
+                let step = update_whole_block(problem, workspace, index, &factor, relaxation)?;
                 if step.is_none() {
                     workspace.whole[index] = Whole::No;
                 }
@@ -271,10 +305,11 @@ fn sweep<P: Projection>(
     Ok(largest_change)
 }
 
-/// `K⁻¹` of block `index`, with `K = J M⁻¹ Jᵀ` its own part of `A` (symmetric; padded with the
-/// identity to 6 × 6); `None` if `K` is not positive definite. Inverted once per solve, it
-/// costs one 6 × 6 product per update.
-fn whole_block_inverse<P: Projection>(
+/// The Cholesky factor `L` (`K = L Lᵀ`) of block `index`, with `K = J M⁻¹ Jᵀ` its own part of
+/// `A` (symmetric; padded with the identity to 6 × 6); `None` if `K` is not positive definite.
+/// Factored once per solve, it costs two triangular solves per update — cheaper than forming
+/// `K⁻¹` when a converged block takes one or two whole steps in a solve.
+fn whole_block_factor<P: Projection>(
     problem: &Problem<P>,
     workspace: &PgsWorkspace,
     index: usize,
@@ -289,7 +324,7 @@ fn whole_block_inverse<P: Projection>(
             k[(j, i)] = k[(i, j)];
         }
     }
-    k.cholesky().map(|c| c.inverse())
+    k.cholesky().map(|c| c.unpack())
 }
 
 /// The whole-block step: `Δλ = −ω K⁻¹ e` for the block's velocity errors `e`, kept only if
@@ -301,9 +336,9 @@ fn update_whole_block<P: Projection>(
     problem: &mut Problem<P>,
     workspace: &PgsWorkspace,
     index: usize,
-    inverse: &Matrix6<f64>,
+    factor: &Matrix6<f64>,
     relaxation: f64,
-) -> Result<Option<f64>, LcpError> {
+) -> Result<Option<Change>, LcpError> {
     let Problem {
         bodies,
         rows,
@@ -317,7 +352,9 @@ fn update_whole_block<P: Projection>(
     for (e, row) in error.iter_mut().zip(rows.iter()) {
         *e = row.jacobian.velocity(&bodies[ia], &bodies[ib]) - row.target;
     }
-    let delta = inverse * error * -relaxation;
+    let mut delta = error * -relaxation;
+    factor.solve_lower_triangular_unchecked_mut(&mut delta);
+    factor.tr_solve_lower_triangular_unchecked_mut(&mut delta);
     let mut trial = [0.0; WHOLE_BLOCK_ROWS];
     for (k, row) in rows.iter().enumerate() {
         trial[k] = row.impulse + delta[k];
@@ -325,7 +362,7 @@ fn update_whole_block<P: Projection>(
     if !block.projection.admissible(&trial[..rows.len()]) {
         return Ok(None);
     }
-    let mut largest_change: f64 = 0.0;
+    let mut largest_change = Change::default();
     for (k, row) in rows.iter_mut().enumerate() {
         if delta[k] != 0.0 {
             if !delta[k].is_finite() {
@@ -333,7 +370,7 @@ fn update_whole_block<P: Projection>(
             }
             apply(bodies, ia, ib, &responses[k], delta[k]);
         }
-        largest_change = largest_change.max(delta[k].abs());
+        largest_change.add(delta[k], &responses[k]);
         row.impulse = trial[k];
     }
     Ok(Some(largest_change))
@@ -341,14 +378,14 @@ fn update_whole_block<P: Projection>(
 
 /// Updates the rows of block `index` once each (a friction pair as one 2-D step), with the
 /// responses in `workspace.responses` at `responses` (the block's own, or the shock pass's);
-/// returns `max |Δλ|`.
+/// returns how much it changed the impulses.
 fn update_block<P: Projection>(
     problem: &mut Problem<P>,
     workspace: &mut PgsWorkspace,
     index: usize,
     responses: Range<usize>,
     relaxation: f64,
-) -> Result<f64, LcpError> {
+) -> Result<Change, LcpError> {
     let Problem {
         bodies,
         rows,
@@ -400,9 +437,9 @@ fn update_block<P: Projection>(
         }
         k += width;
     }
-    let mut largest_change: f64 = 0.0;
-    for (row, &new) in rows.iter_mut().zip(impulse.iter()) {
-        largest_change = largest_change.max((new - row.impulse).abs());
+    let mut largest_change = Change::default();
+    for ((row, &new), response) in rows.iter_mut().zip(impulse.iter()).zip(responses) {
+        largest_change.add(new - row.impulse, response);
         row.impulse = new;
     }
     Ok(largest_change)

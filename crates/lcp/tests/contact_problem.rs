@@ -192,6 +192,53 @@ fn recorded_impulse_change_shrinks_and_warm_start_reuses_impulses() {
     );
 }
 
+/// A solve with a `tolerance` stops at the first sweep that changes no row's velocity by more
+/// than it, and lands where the full solve does. Off the axes: the cube slides diagonally and
+/// spins, so every corner's rows are coupled.
+#[test]
+fn a_solve_with_a_tolerance_stops_early_near_the_converged_answer() {
+    let sliding = || {
+        let mut problem = cube_on_ground(Vector3::new(0.3, 0.2, -G * DT), 0.5);
+        problem.bodies[1].angular_velocity = Vector3::new(0.1, -0.2, 0.4);
+        problem
+    };
+    let mut workspace = PgsWorkspace::default();
+    let mut converged = sliding();
+    let full = PgsParams {
+        iterations: 10_000,
+        ..PgsParams::default()
+    };
+    let info = pgs::solve_in_place(&mut converged, &mut workspace, &full).unwrap();
+    assert_eq!(info.sweeps, 10_000, "tolerance 0 runs every sweep");
+    let tolerance = 1e-8;
+    let mut early = sliding();
+    let params = PgsParams { tolerance, ..full };
+    let info = pgs::solve_in_place(&mut early, &mut workspace, &params).unwrap();
+    assert!(info.sweeps < 1_000, "{} sweeps", info.sweeps);
+    assert_eq!(info.row_updates, info.sweeps * early.rows.len());
+    // PGS converges linearly, so once a sweep moves nothing by more than the tolerance the
+    // remaining distance is the tolerance over (1 − rate); 100× allows a rate up to 0.99.
+    let (a, b) = (&early.bodies[1], &converged.bodies[1]);
+    let gap = (a.linear_velocity - b.linear_velocity)
+        .norm()
+        .max((a.angular_velocity - b.angular_velocity).norm());
+    assert!(
+        gap < 100.0 * tolerance,
+        "{gap:e} m/s from the converged answer"
+    );
+    // Warm-started from the answer, one sweep finds nothing to do.
+    let mut again = sliding();
+    for (row, solved) in again.rows.iter_mut().zip(&converged.rows) {
+        row.impulse = solved.impulse;
+    }
+    let warm = PgsParams {
+        warm_start: WarmStart::On,
+        ..params
+    };
+    let info = pgs::solve_in_place(&mut again, &mut workspace, &warm).unwrap();
+    assert_eq!(info.sweeps, 1);
+}
+
 struct PoisonProjection;
 
 impl Projection for PoisonProjection {
