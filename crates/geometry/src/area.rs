@@ -202,7 +202,12 @@ fn fan_triangle_distance_integral(c: &Point2<f64>, a: &Point2<f64>, b: &Point2<f
             (len * sum / (s2 * r1 + s1 * r2)).asinh(),
         )
     } else {
-        (s2 * r2 - s1 * r1, (s2 / d).asinh() - (s1 / d).asinh())
+        // s₁ ≤ 0 ≤ s₂: asinh(s₂/d) − asinh(s₁/d) = ln((s₂ + r₂)(r₁ − s₁)/d²), written as
+        // ln(1 + x) with x = ((s₂ + r₂)(r₁ − s₁) − d²)/d² expanded into non-negative terms
+        // (r₁r₂ − d² = (s₁²s₂² + d²(s₁² + s₂²))/(r₁r₂ + d²)): one logarithm, no cancellation.
+        let excess = s2 * r1 - s1 * r2 - s1 * s2
+            + (s1 * s1 * s2 * s2 + d * d * (s1 * s1 + s2 * s2)) / (r1 * r2 + d * d);
+        (s2 * r2 - s1 * r1, (excess / (d * d)).ln_1p())
     };
     // d³ asinh(…) → 0 as d → 0; below d ≈ 1e-108, d³ is 0 while s/d may overflow to ∞, and
     // 0·∞ would be NaN.
