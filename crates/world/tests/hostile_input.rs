@@ -251,3 +251,26 @@ fn a_direct_problem_beyond_the_memory_budget_is_an_error() {
         "{error}"
     );
 }
+
+/// A PGS tolerance that is negative, NaN or infinite is refused naming the field; 0 (run every
+/// sweep) and the default are accepted.
+#[test]
+fn a_pgs_tolerance_out_of_range_is_refused() {
+    use tatami_lcp::pgs::PgsParams;
+    use tatami_world::{Solver, WorldError, WorldSettings};
+    let with = |tolerance: f64| WorldSettings {
+        solver: Solver::Pgs(PgsParams {
+            tolerance,
+            ..PgsParams::default()
+        }),
+        ..WorldSettings::default()
+    };
+    for bad in [-1e-6, f64::NAN, f64::INFINITY] {
+        match with(bad).validate() {
+            Err(WorldError::InvalidSettings { field, .. }) => assert_eq!(field, "tolerance"),
+            other => panic!("tolerance {bad}: {other:?}"),
+        }
+    }
+    assert!(with(0.0).validate().is_ok());
+    assert!(WorldSettings::default().validate().is_ok());
+}
