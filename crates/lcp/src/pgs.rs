@@ -459,7 +459,8 @@ pub enum Support {
 /// only the other body's velocity changes. Run from the ground up, it sets every body to rest
 /// on the one below it exactly, so a stack's weight needs no sweeps to travel down; the price is
 /// that the supporting bodies do not feel this last pass's reactions (momentum is not
-/// conserved by it), which is why it is an option for stacking, not the default.
+/// conserved by it). A caller that runs it by default should keep its result only when it does
+/// not add energy, as `tatami-world` does.
 ///
 /// Errors as [`solve_in_place`], and [`LcpError::MalformedBlock`] for an `order` entry past the
 /// last block.

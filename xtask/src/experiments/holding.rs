@@ -188,8 +188,9 @@ fn report(traces: &[Trace], files: Vec<&'static str>) -> Outcome {
     let mut text = String::from(
         "**Paper.** The face contact holds where per-vertex contacts rock and walk; shown on \
          symmetric towers only.\n\n\
-         **Tatami.** The holding scenes with the default settings (15 PGS sweeps warm-started \
-         by contact feature, the penetration push in a position pass), under each model. Drift = \
+         **Tatami.** The holding scenes with the default settings (up to 15 PGS sweeps \
+         warm-started by contact feature, the energy-guarded shock pass, the penetration push in \
+         a position pass), under each model. Drift = \
          the largest displacement of any body over the window the tests use (from 2 s on for the \
          pair and the leaning stack, which settle first; from the start for the others), then \
          from the start over the whole run, as charted.\n\n\
@@ -216,11 +217,12 @@ fn report(traces: &[Trace], files: Vec<&'static str>) -> Outcome {
         ));
     }
     text.push_str(
-        "\nIn the 1000:1 stack the light cube stays where it was (the tests check it alone) \
-         while the heavy one settles 1.7 cm into it: the velocity solve's residual at that mass \
-         ratio and the position pass balance there. The tower of 100 at 60 Hz is not held yet: \
-         its new contacts, solved in 15 sweeps, leave the top cubes falling for a dozen steps \
-         before the floor's reaction reaches them.\n",
+        "\nUnder the face model neither cube of the 1000:1 stack moves: the shock pass sets the \
+         heavy cube at rest on the light one, which rests on the floor. The tower of 100 at 60 Hz \
+         stands on the same pass; without it (`\"shock_propagation\": false`) its new contacts, \
+         solved in 15 sweeps, leave the top cubes falling for a dozen steps before the floor's \
+         reaction reaches them, and the tower bounces. The vertex and patch towers fall even \
+         with it: one corner at a time, the pass tips the upper cube.\n",
     );
     for file in &files[1..] {
         if file.ends_with(".png") {
