@@ -27,17 +27,23 @@
 //!
 //! **Whole blocks.** A block that asks for it ([`Projection::whole_block`]: the face model's
 //! faces) is first stepped whole, `Δλ = −ω K⁻¹ e` with `K` its own 6 × 6 block of `A`
-//! (inverted when first needed in a solve), and the step is kept if it lands in the admissible
-//! set — the sticking face with its centre of pressure inside, by far the commonest case, is
-//! then solved exactly for its neighbours' current velocities in one update. Otherwise the
-//! block is updated row by row as above, and for the rest of the solve. This does not move the fixed points: where the whole step is
-//! kept, the row-by-row update converges to the same block solution; where a bound is active,
-//! the row-by-row update decides (the Newton step's fixed point would be off Coulomb's slip
-//! direction, see above). It lowered the drift of the holding scenes (leaning stack 0.38 →
-//! 0.25 mm, the 820-cube pyramid's largest displacement 14.5 → 10.6 cm) and brought the
-//! 210-cube pyramid to rest within the contact set's reuse tolerance (its collision time fell
-//! tenfold); a sweep costs more, though: the 100-cube tower's cold solve of 15 sweeps takes
-//! 248 µs against 187 µs row by row (`world` bench).
+//! (factored by Cholesky when first needed in a solve), and the step is kept if it lands in the
+//! admissible set — the sticking face with its centre of pressure inside, by far the commonest
+//! case, is then solved exactly for its neighbours' current velocities in one update. Otherwise
+//! the block is updated row by row as above, and for the rest of the solve. This does not move
+//! the fixed points: where the whole step is kept, the row-by-row update converges to the same
+//! block solution; where a bound is active, the row-by-row update decides (the Newton step's
+//! fixed point would be off Coulomb's slip direction, see above). It lowered the drift of the
+//! holding scenes (leaning stack 0.38 → 0.25 mm, the 820-cube pyramid's largest displacement
+//! 14.5 → 10.6 cm) and brought the 210-cube pyramid to rest within the contact set's reuse
+//! tolerance (its collision time fell tenfold); a sweep costs more, though: the 100-cube tower's
+//! cold solve of 15 sweeps takes 248 µs against 187 µs row by row (`world` bench).
+//!
+//! **Stopping.** With [`PgsParams::tolerance`] > 0 the solve ends after the first sweep in which
+//! no row's update moved that row's velocity by as much as the tolerance. Warm-started from an
+//! exact carry-over, a scene at rest then costs one sweep; a moving scene runs every sweep. The
+//! measure is each row's own velocity change, so it reads in m/s (rad/s for angular rows)
+//! whatever the masses, unlike `max |Δλ|`.
 //!
 //! Decision record: the projection sees the whole block, not one row, because the face model's
 //! centre of pressure couples three rows (τ₁, τ₂, f₃) and cannot be clamped one row at a time.
