@@ -41,7 +41,7 @@ pub fn lemke(
     solve(a, q, max_pivots).map(|(z, _)| z)
 }
 
-/// [`lemke`], also returning the number of pivots made.
+/// [`lemke`](fn@lemke), also returning the number of pivots made.
 ///
 /// The problem is first scaled to a unit diagonal, `z = D y` with `D = diag(aᵢᵢ)^(−1/2)` (1
 /// where `aᵢᵢ ≤ 0`): `D a D y + D q` has the same complementarity, and its pivots compare

@@ -7,7 +7,7 @@
 //! the row wants `w⁺ = target`, and an impulse `λ` changes the velocities by `M⁻¹ Jᵀ λ`.
 //!
 //! - [`pgs`]: sequential impulses, the real-time solver (paper: 15 sweeps).
-//! - [`direct`]: the same contact problem solved exactly by [`lemke`] on an equivalent
+//! - [`direct`]: the same contact problem solved exactly by [`lemke`](fn@lemke) on an equivalent
 //!   standard LCP, the reference for PGS error.
 //! - [`dense`]: `A = J M⁻¹ Jᵀ`, `b` and the dense boxed PGS [`pgs_dense`].
 //! - [`residual`]: complementarity, feasibility and error metrics.
