@@ -2,7 +2,8 @@
 //! compatibly).
 //!
 //! Beyond DESIGN §6's fields a scene may set `steps`, `solver` (`"pgs"` or `"direct"`),
-//! `warm_start` and `shock_propagation` (both on by default), `sleeping` (off by default; see
+//! `tolerance` (m/s, ≥ 0: PGS stops once a sweep changes no row's velocity by this much; see
+//! [`crate::PGS_TOLERANCE`], and 0 runs every sweep), `warm_start` and `shock_propagation` (both on by default), `sleeping` (off by default; see
 //! [`crate::Sleeping`]), `friction_cone` (`"circle"`,
 //! the isotropic default, or `"box"`, the paper's pyramid), `bias_rate`, `slop`,
 //! `max_depenetration_speed` (m/s, > 0) and `max_velocity_bias` (m/s, ≥ 0; see
@@ -101,8 +102,9 @@ pub struct Scene {
     pub settings: WorldSettings,
     /// Bodies, in order.
     pub bodies: Vec<BodyDesc>,
-    /// The PGS-only settings the scene gives explicitly (`iterations`, `warm_start`,
-    /// `shock_propagation`), so that a run with the direct solver can say it ignores them.
+    /// The PGS-only settings the scene gives explicitly (`iterations`, `tolerance`,
+    /// `warm_start`, `shock_propagation`), so that a run with the direct solver can say it
+    /// ignores them.
     pub pgs_settings: Vec<&'static str>,
 }
 
@@ -290,6 +292,8 @@ struct RawScene {
     #[serde(default, deserialize_with = "at_least_one")]
     iterations: Option<usize>,
     #[serde(default, deserialize_with = "present")]
+    tolerance: Option<NonNegative>,
+    #[serde(default, deserialize_with = "present")]
     model: Option<ModelName>,
     #[serde(default, deserialize_with = "present")]
     solver: Option<SolverName>,
@@ -399,6 +403,7 @@ impl RawScene {
         };
         let pgs = PgsParams {
             iterations: self.iterations.unwrap_or(default_pgs.iterations),
+            tolerance: self.tolerance.map_or(default_pgs.tolerance, |t| t.0),
             warm_start: match self.warm_start {
                 Some(true) => WarmStart::On,
                 Some(false) => WarmStart::Off,
@@ -436,6 +441,7 @@ impl RawScene {
         }
         let given = [
             ("iterations", self.iterations.is_some()),
+            ("tolerance", self.tolerance.is_some()),
             ("warm_start", self.warm_start.is_some()),
             ("shock_propagation", self.shock_propagation.is_some()),
         ];

@@ -68,6 +68,7 @@ fn each_invalid_field_is_named_with_its_line() {
             12,
         ),
         (3, r#"  "dt": 0,"#, "dt", "> 0", 3),
+        (4, r#"  "tolerance": -1e-4,"#, "tolerance", "≥ 0", 4),
         (3, r#"  "dt": -0.01,"#, "dt", "> 0", 3),
         (3, r#"  "dt": 1e400,"#, "dt", "number out of range", 3),
         (
@@ -180,6 +181,14 @@ fn solver_options_are_read() {
     assert!(!plain.settings.sleeping.enabled, "off unless asked for");
     let without = Scene::from_json(&scene_with(4, r#"  "shock_propagation": false,"#)).unwrap();
     assert!(!without.settings.shock_propagation);
+    let tolerance = |scene: &Scene| match scene.settings.solver {
+        tatami_world::Solver::Pgs(p) => p.tolerance,
+        tatami_world::Solver::Direct(_) => panic!("a PGS scene"),
+    };
+    assert_eq!(tolerance(&plain), tatami_world::PGS_TOLERANCE);
+    let every_sweep = Scene::from_json(&scene_with(4, r#"  "tolerance": 0,"#)).unwrap();
+    assert_eq!(tolerance(&every_sweep), 0.0);
+    assert_eq!(every_sweep.pgs_settings, ["tolerance"]);
 }
 
 #[test]
