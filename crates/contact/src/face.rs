@@ -125,12 +125,9 @@ impl Projection for FaceProjection {
             return false;
         };
         let f3 = impulses[NORMAL];
-        let limit = self.friction * f3;
-        let (f1, f2) = (impulses[FRICTION_1], impulses[FRICTION_1 + 1]);
-        let within_cone = match self.cone {
-            FrictionCone::Box => f1.abs() <= limit && f2.abs() <= limit,
-            FrictionCone::Circle => f1 * f1 + f2 * f2 <= limit * limit,
-        };
+        let within_cone = self
+            .cone
+            .contains(&impulses[FRICTION_1..FRICTION_1 + 2], self.friction * f3);
         if !within_cone || impulses[TWIST].abs() > self.twist_per_normal * f3 {
             return false;
         }

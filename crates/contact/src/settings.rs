@@ -70,12 +70,7 @@ impl FrictionCone {
                 }
             }
             Self::Circle => {
-                // √(f1² + f2²) rather than `hypot`, which guards against an overflow that
-                // finite impulses below 1e154 N·s cannot reach and costs several times more in
-                // this innermost loop; `hypot` takes over past that.
-                let (f1, f2) = (tangential[0], tangential[1]);
-                let norm = (f1 * f1 + f2 * f2).sqrt();
-                let norm = if norm.is_finite() { norm } else { f1.hypot(f2) };
+                let norm = magnitude(tangential[0], tangential[1]);
                 if norm > limit {
                     tangential[0] *= limit / norm;
                     tangential[1] *= limit / norm;
@@ -83,6 +78,23 @@ impl FrictionCone {
             }
         }
     }
+
+    /// Whether `tangential = [f1, f2]` is within `limit` already, so that
+    /// [`clamp`](Self::clamp) would leave it as it is.
+    pub fn contains(self, tangential: &[f64], limit: f64) -> bool {
+        match self {
+            Self::Box => tangential[..2].iter().all(|f| f.abs() <= limit),
+            Self::Circle => magnitude(tangential[0], tangential[1]) <= limit,
+        }
+    }
+}
+
+/// `√(f1² + f2²)` rather than `hypot`, which guards against an overflow that finite impulses
+/// below 1e154 N·s cannot reach and costs several times more in PGS's innermost loop; `hypot`
+/// takes over past that.
+fn magnitude(f1: f64, f2: f64) -> f64 {
+    let norm = (f1 * f1 + f2 * f2).sqrt();
+    if norm.is_finite() { norm } else { f1.hypot(f2) }
 }
 
 /// How the face and patch models compute the mean distance `r̄` of the twist bound.

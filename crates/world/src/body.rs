@@ -516,9 +516,13 @@ impl Body {
 
     /// Kinetic energy, translational plus rotational (J).
     pub fn kinetic_energy(&self) -> f64 {
-        let w = self.angular_velocity;
-        0.5 * self.mass * self.linear_velocity.norm_squared()
-            + 0.5 * w.dot(&(self.inertia_world() * w))
+        self.kinetic_energy_at(&self.linear_velocity, &self.angular_velocity)
+    }
+
+    /// The kinetic energy the body would have at these velocities, in its current pose (J).
+    pub(crate) fn kinetic_energy_at(&self, linear: &Vector3<f64>, angular: &Vector3<f64>) -> f64 {
+        0.5 * self.mass * linear.norm_squared()
+            + 0.5 * angular.dot(&(self.inertia_world() * angular))
     }
 
     /// Where the body goes over `dt` with the solved velocities: the centre of mass along the

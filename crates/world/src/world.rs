@@ -7,7 +7,7 @@ use nalgebra::Vector3;
 use tatami_contact::{Contact, ContactProjection};
 use tatami_lcp::direct::{self, DirectInfo};
 use tatami_lcp::pgs::{self, PgsParams, PgsWorkspace, Record, WarmStart};
-use tatami_lcp::{LcpError, Problem};
+use tatami_lcp::{LcpError, Problem, SolverBody};
 
 use crate::body::{BodyKind, Motion};
 use crate::collision::{self, BodyGeometry, CollisionWorkspace};
@@ -54,9 +54,8 @@ pub struct World {
     collision_workspace: CollisionWorkspace,
     /// The islands of touching dynamic bodies, for sleeping.
     islands: Islands,
-    /// Scratch: the velocity solve's bodies and impulses, restored if the shock pass would add
-    /// energy.
-    shock_backup: (Vec<tatami_lcp::SolverBody>, Vec<f64>),
+    /// Scratch: the velocity solve's answer, restored if the shock pass would add energy.
+    before_shock: SolvedState,
     pgs_workspace: PgsWorkspace,
     timings: StepTimings,
     time: f64,
@@ -90,7 +89,7 @@ impl World {
             motions: Vec::new(),
             collision_workspace: CollisionWorkspace::default(),
             islands: Islands::default(),
-            shock_backup: Default::default(),
+            before_shock: SolvedState::default(),
             pgs_workspace: PgsWorkspace::default(),
             timings: StepTimings::default(),
             time: 0.0,
@@ -401,34 +400,23 @@ impl World {
     /// pass's reactions, which can push its load up as if off a fixed floor; undone then, the
     /// pass can only take energy out (a falling stack stopped on its base).
     fn guarded_shock_pass(&mut self) -> Result<(), LcpError> {
-        let energy = |bodies: &[Body], solved: &[tatami_lcp::SolverBody]| -> f64 {
+        let energy = |bodies: &[Body], solved: &[SolverBody]| -> f64 {
             bodies
                 .iter()
                 .zip(solved)
                 .filter(|(b, _)| b.is_dynamic())
-                .map(|(b, s)| {
-                    let w = s.angular_velocity;
-                    0.5 * b.mass() * s.linear_velocity.norm_squared()
-                        + 0.5 * w.dot(&(b.inertia_world() * w))
-                })
+                .map(|(b, s)| b.kinetic_energy_at(&s.linear_velocity, &s.angular_velocity))
                 .sum()
         };
         let before = energy(&self.bodies, &self.problem.bodies);
-        self.shock_backup.0.clone_from(&self.problem.bodies);
-        self.shock_backup.1.clear();
-        self.shock_backup
-            .1
-            .extend(self.problem.rows.iter().map(|r| r.impulse));
+        self.before_shock.save(&self.problem);
         pgs::shock_propagation(
             &mut self.problem,
             &mut self.pgs_workspace,
             self.contact_set.shock_order(&self.gravity),
         )?;
         if energy(&self.bodies, &self.problem.bodies) > before {
-            self.problem.bodies.clone_from(&self.shock_backup.0);
-            for (row, &impulse) in self.problem.rows.iter_mut().zip(&self.shock_backup.1) {
-                row.impulse = impulse;
-            }
+            self.before_shock.restore(&mut self.problem);
         }
         Ok(())
     }
@@ -556,6 +544,28 @@ impl World {
             self.contact_set.store(self.settings.model, &self.problem);
         }
         Ok(())
+    }
+}
+
+/// A solve's answer — velocities and impulses — kept to be put back; buffers reused.
+#[derive(Debug, Clone, Default)]
+struct SolvedState {
+    bodies: Vec<SolverBody>,
+    impulses: Vec<f64>,
+}
+
+impl SolvedState {
+    fn save(&mut self, problem: &Problem<ContactProjection>) {
+        self.bodies.clone_from(&problem.bodies);
+        self.impulses.clear();
+        self.impulses.extend(problem.rows.iter().map(|r| r.impulse));
+    }
+
+    fn restore(&self, problem: &mut Problem<ContactProjection>) {
+        problem.bodies.clone_from(&self.bodies);
+        for (row, &impulse) in problem.rows.iter_mut().zip(&self.impulses) {
+            row.impulse = impulse;
+        }
     }
 }
 
