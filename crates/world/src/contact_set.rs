@@ -10,8 +10,9 @@
 //! blocks; [`warm_start`](ContactSet::warm_start) writes into every row the impulse of the row
 //! with the same key last step — the key is the feature id of the support vertex the row acts at
 //! (or the whole contact) and the row's rank there, so a row is matched exactly or starts from
-//! zero, never from a neighbour's impulse; after the solve [`store`](ContactSet::store) keeps
-//! them.
+//! zero, never from a neighbour's impulse — and a pair with nothing stored starts its normal rows
+//! from the weight it carries ([`crate::load_estimate`]); after the solve
+//! [`store`](ContactSet::store) keeps them.
 //!
 //! The set's order is the Gauss–Seidel order: from the highest contact to the lowest along
 //! gravity, so a stack's weight reaches its base within one sweep instead of one level per sweep
@@ -22,9 +23,10 @@ use std::ops::Range;
 
 use nalgebra::{Point3, UnitQuaternion, Vector3};
 use tatami_contact::{Contact, ContactModel, ContactProjection};
-use tatami_lcp::Problem;
 use tatami_lcp::pgs::Support;
+use tatami_lcp::{Block, Problem, Projection, RowBound};
 
+use crate::load_estimate::LoadEstimate;
 use crate::support::FeatureId;
 
 /// Largest motion of either body (m; a turn counts as rad × the body's size) since a pair's
@@ -75,6 +77,8 @@ pub(crate) struct ContactSet {
     keys: Vec<RowKey>,
     /// Scratch: the shock-propagation order.
     shock_order: Vec<(usize, Support)>,
+    /// Scratch: the first guess for new pairs.
+    loads: LoadEstimate,
 }
 
 impl ContactSet {
@@ -199,14 +203,27 @@ impl ContactSet {
     }
 
     /// Writes into every row of `problem` the impulse its key had after the last solve under
-    /// `model`; rows whose key is new keep zero.
+    /// `model`; rows whose key is new keep zero. A pair with nothing stored under `model` (new,
+    /// or last solved under another model) starts instead with the weight it carries at rest
+    /// under `weight_per_mass` (gravity × dt) spread evenly over its normal rows — see
+    /// [`crate::load_estimate`].
     pub(crate) fn warm_start(
         &mut self,
         model: ContactModel,
         problem: &mut Problem<ContactProjection>,
+        weight_per_mass: &Vector3<f64>,
     ) {
-        for entry in &self.entries {
-            if entry.state.model != Some(model) || entry.state.blocks.is_empty() {
+        let estimate = self.loads.estimate(
+            self.entries.iter().map(|e| &e.contact),
+            &problem.bodies,
+            weight_per_mass,
+        );
+        for (entry, &load) in self.entries.iter().zip(estimate) {
+            if entry.state.blocks.is_empty() {
+                continue;
+            }
+            if entry.state.model != Some(model) {
+                spread_over_normal_rows(problem, &entry.state.blocks, load);
                 continue;
             }
             let rows = rows_of(problem, &entry.state.blocks);
@@ -246,17 +263,47 @@ impl ContactSet {
     pub(crate) fn shock_order(&mut self, gravity: &Vector3<f64>) -> &[(usize, Support)] {
         self.shock_order.clear();
         for entry in self.entries.iter().rev() {
-            let height = |c: &Point3<f64>| -c.coords.dot(gravity);
-            let contact = &entry.contact;
-            let support = if height(&contact.centre_a) <= height(&contact.centre_b) {
-                Support::A
-            } else {
-                Support::B
-            };
+            let support = support_of(&entry.contact, gravity);
             self.shock_order
                 .extend(entry.state.blocks.clone().map(|block| (block, support)));
         }
         &self.shock_order
+    }
+}
+
+/// The body of `contact` that is lower along `gravity` (by centre of mass): the one carrying the
+/// other.
+pub(crate) fn support_of(contact: &Contact, gravity: &Vector3<f64>) -> Support {
+    let height = |c: &Point3<f64>| -c.coords.dot(gravity);
+    if height(&contact.centre_a) <= height(&contact.centre_b) {
+        Support::A
+    } else {
+        Support::B
+    }
+}
+
+/// Spreads the normal impulse `load` evenly over the normal rows (those bounded `λ ≥ 0`) of
+/// `blocks`.
+fn spread_over_normal_rows(
+    problem: &mut Problem<ContactProjection>,
+    blocks: &Range<usize>,
+    load: f64,
+) {
+    let is_normal = |block: &Block<ContactProjection>, k: usize| {
+        block.projection.bound(k) == Some(RowBound::NonNegative)
+    };
+    let blocks = &problem.blocks[blocks.clone()];
+    let normals: usize = blocks
+        .iter()
+        .map(|b| (0..b.rows.len()).filter(|&k| is_normal(b, k)).count())
+        .sum();
+    if normals == 0 {
+        return;
+    }
+    for block in blocks {
+        for k in (0..block.rows.len()).filter(|&k| is_normal(block, k)) {
+            problem.rows[block.rows.start + k].impulse = load / normals as f64;
+        }
     }
 }
 

@@ -25,6 +25,7 @@ mod contact_set;
 mod control;
 pub mod dropped;
 mod error;
+mod load_estimate;
 mod parry_bridge;
 mod rotation;
 pub mod scene;

@@ -238,7 +238,7 @@ impl World {
         let collided = Instant::now();
         self.build_problem(dt)?;
         let built = Instant::now();
-        self.solve()?;
+        self.solve(dt)?;
         let solved = Instant::now();
         self.correct_penetration()?;
         let corrected = Instant::now();
@@ -368,14 +368,15 @@ impl World {
         Ok(())
     }
 
-    fn solve(&mut self) -> Result<(), StepError> {
+    fn solve(&mut self, dt: f64) -> Result<(), StepError> {
         let model = self.settings.model;
         self.direct_info = None;
         let result = match &self.settings.solver {
             Solver::Pgs(params) => {
                 let warm = params.warm_start == WarmStart::On;
                 if warm {
-                    self.contact_set.warm_start(model, &mut self.problem);
+                    self.contact_set
+                        .warm_start(model, &mut self.problem, &(self.gravity * dt));
                 }
                 let mut result =
                     pgs::solve_in_place(&mut self.problem, &mut self.pgs_workspace, params)
