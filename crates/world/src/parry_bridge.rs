@@ -122,9 +122,18 @@ pub(crate) fn contact_normal(
 /// axis parry's cuboid manifold uses, without building the manifold's contact points, which
 /// [`crate::support`] replaces with the full support polygon. `None` beyond `prediction`.
 fn cuboid_normal(box1: &Cuboid, box2: &Cuboid, pos12: &Pose, prediction: f64) -> Option<Vector> {
-    let pos21 = pos12.inverse();
+    // The best axis separates most; any axis separating by more than `prediction` settles the
+    // answer, so the axes are tried cheapest first and the search ends at the first such one
+    // (most box pairs whose bounding boxes overlap do not touch).
     let faces1 = sat::cuboid_cuboid_find_local_separating_normal_oneway(box1, box2, pos12);
+    if faces1.0 > prediction {
+        return None;
+    }
+    let pos21 = pos12.inverse();
     let faces2 = sat::cuboid_cuboid_find_local_separating_normal_oneway(box2, box1, &pos21);
+    if faces2.0 > prediction {
+        return None;
+    }
     let edges = sat::cuboid_cuboid_find_local_separating_edge_twoway(box1, box2, pos12);
     let best = [faces1, (faces2.0, pos12.rotation * -faces2.1), edges]
         .into_iter()
