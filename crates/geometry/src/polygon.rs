@@ -216,10 +216,14 @@ fn simplify(ring: Vec<Point2<f64>>, tolerance: f64) -> Vec<Point2<f64>> {
             })
             .fold(0.0, f64::max)
     };
+    let cost_of = |i: usize| deviation((i + n - 1) % n, (i + 1) % n);
+    // Most rings have nothing to remove (a box face, a clipped overlap): return them as they
+    // are, without the bookkeeping below.
+    if n > 2 && (0..n).all(|i| cost_of(i) > tolerance) {
+        return ring;
+    }
     let mut kept: Vec<usize> = (0..n).collect();
-    let mut cost: Vec<f64> = (0..n)
-        .map(|i| deviation((i + n - 1) % n, (i + 1) % n))
-        .collect();
+    let mut cost: Vec<f64> = (0..n).map(cost_of).collect();
     while kept.len() > 2 {
         let (slot, &worst) = cost
             .iter()
