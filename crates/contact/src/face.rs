@@ -112,6 +112,11 @@ impl Projection for FaceProjection {
         self.cone.tangent_pair(FRICTION_1)
     }
 
+    /// `f3`; without it the face carries no friction, twist or tilt.
+    fn leading_normal_rows(&self) -> usize {
+        NORMAL + 1
+    }
+
     /// A face of area: its six rows are solved together while the contact sticks with its
     /// centre of pressure inside. Not a point or a segment, whose tilt torques are bounded to
     /// zero or to a line, so a free step would always leave the set.

@@ -43,6 +43,11 @@ impl Projection for PatchProjection {
         self.cone.tangent_pair(self.distances.len())
     }
 
+    /// The vertices' normal rows; friction and twist are bounded by their sum.
+    fn leading_normal_rows(&self) -> usize {
+        self.distances.len()
+    }
+
     /// The normal rows are plain bounds; the friction rows are bounded by a sum of normals, which
     /// is not a product of row bounds (see [`Projection::linear_set`]).
     fn bound(&self, row: usize) -> Option<RowBound> {

@@ -24,6 +24,11 @@ impl Projection for PointFriction {
         self.cone.tangent_pair(1)
     }
 
+    /// The normal row; without it the cone holds no friction.
+    fn leading_normal_rows(&self) -> usize {
+        1
+    }
+
     /// The box cone as row bounds; the circular cone is not a product of row bounds.
     fn bound(&self, row: usize) -> Option<RowBound> {
         match (row, self.cone) {

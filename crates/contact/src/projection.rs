@@ -34,6 +34,14 @@ impl Projection for ContactProjection {
         }
     }
 
+    fn leading_normal_rows(&self) -> usize {
+        match self {
+            Self::Point(p) => p.leading_normal_rows(),
+            Self::Patch(p) => p.leading_normal_rows(),
+            Self::Face(p) => p.leading_normal_rows(),
+        }
+    }
+
     fn whole_block(&self) -> bool {
         match self {
             Self::Face(p) => p.whole_block(),

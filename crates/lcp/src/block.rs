@@ -69,6 +69,16 @@ pub trait Projection {
         None
     }
 
+    /// How many of the block's first rows are its normal rows, with the promise that while they
+    /// are all zero [`project`](Projection::project) sets every other row to zero too — a
+    /// contact cone, where friction and torques need a normal force. PGS then ends a block's
+    /// update once its normal rows have left every impulse at zero (a contact parting, or not
+    /// yet loaded): the other rows' steps would all be projected back to zero. 0 (the default)
+    /// makes no such promise.
+    fn leading_normal_rows(&self) -> usize {
+        0
+    }
+
     /// Whether PGS should first try the whole block at once (see [`crate::pgs`]): solve its
     /// rows together with the block's own effective mass `K⁻¹`, and keep that step when it
     /// lands in the admissible set ([`admissible`](Projection::admissible)). Blocks of at most

@@ -39,6 +39,15 @@
 //! tolerance (its collision time fell tenfold); a sweep costs more, though: the 100-cube tower's
 //! cold solve of 15 sweeps takes 248 µs against 187 µs row by row (`world` bench).
 //!
+//! **Unloaded blocks.** A block whose projection names its normal rows
+//! ([`Projection::leading_normal_rows`]: a contact cone, where friction and torques need a
+//! normal force) ends its row-by-row update once those rows leave every impulse at zero — a
+//! contact parting, or not loaded yet, as most of a cold-started tall tower is: the other rows'
+//! steps would each be projected back to zero, so the answer is the same to the bit (to the sign
+//! of a zero; `tests/unloaded_blocks.rs`). On the 100-cube tower's cold 15-sweep solve the face
+//! model's time fell to 0.26× the vertex model's (140 against 546 µs, `world` bench), from
+//! about 0.5×.
+//!
 //! **Stopping.** With [`PgsParams::tolerance`] > 0 the solve ends after the first sweep in which
 //! no row's update moved that row's velocity by as much as the tolerance. Warm-started from an
 //! exact carry-over, a scene at rest then costs one sweep; a moving scene runs every sweep. The
@@ -411,6 +420,7 @@ fn update_block<P: Projection>(
         .projection
         .tangent_pair()
         .filter(|&first| first + 1 < rows.len());
+    let normals = block.projection.leading_normal_rows();
     let mut k = 0;
     while k < rows.len() {
         let error = |r: usize| rows[r].jacobian.velocity(&bodies[ia], &bodies[ib]) - rows[r].target;
@@ -442,6 +452,10 @@ fn update_block<P: Projection>(
             }
         }
         k += width;
+        // Unloaded: the rest of the block is zero and would be projected back to zero.
+        if k == normals && impulse.iter().all(|&x| x == 0.0) {
+            break;
+        }
     }
     let mut largest_change = Change::default();
     for ((row, &new), response) in rows.iter_mut().zip(impulse.iter()).zip(responses) {
