@@ -220,17 +220,19 @@ impl World {
         self.geometry.remove(index);
         self.contact_set.remove_body(index);
         // The last problem's blocks keep naming the bodies that remain.
-        for problem in [&mut self.problem, &mut self.correction] {
-            if index < problem.bodies.len() {
-                problem.bodies.remove(index);
-            }
-            for block in &mut problem.blocks {
-                for body in [&mut block.body_a, &mut block.body_b] {
-                    if body.0 > index {
-                        body.0 -= 1;
-                    }
+        let problem = &mut self.problem;
+        if index < problem.bodies.len() {
+            problem.bodies.remove(index);
+        }
+        for block in &mut problem.blocks {
+            for body in [&mut block.body_a, &mut block.body_b] {
+                if body.0 > index {
+                    body.0 -= 1;
                 }
             }
+        }
+        if index < self.pseudo_velocities.len() {
+            self.pseudo_velocities.remove(index);
         }
         Ok(self.bodies.remove(index))
     }

@@ -47,15 +47,15 @@ pub struct World {
     biases: Vec<f64>,
     /// Scratch: each moving body's state after the step, checked before it is committed.
     motions: Vec<(usize, Motion)>,
-    /// The position-correction problem of the last step: `problem`'s blocks with the biases as
-    /// targets, solved from rest; its bodies' velocities move positions only. Empty on steps
-    /// without biases.
-    pub(crate) correction: Problem<ContactProjection>,
+    /// The position pass's answer in the last step: per body, the pseudo-velocities that move
+    /// its position only. Empty on steps without biases.
+    pub(crate) pseudo_velocities: Vec<SolverBody>,
     collision_workspace: CollisionWorkspace,
     /// The islands of touching dynamic bodies, for sleeping.
     islands: Islands,
-    /// Scratch: the velocity solve's answer, restored if the shock pass would add energy.
-    before_shock: SolvedState,
+    /// Scratch: the velocity solve's answer set aside — before the shock pass, to be put back
+    /// if the pass would add energy, and during the position pass, which reuses the problem.
+    set_aside: SolvedState,
     pgs_workspace: PgsWorkspace,
     timings: StepTimings,
     time: f64,
@@ -85,11 +85,11 @@ impl World {
             contact_set: ContactSet::default(),
             problem: Problem::default(),
             biases: Vec::new(),
-            correction: Problem::default(),
+            pseudo_velocities: Vec::new(),
             motions: Vec::new(),
             collision_workspace: CollisionWorkspace::default(),
             islands: Islands::default(),
-            before_shock: SolvedState::default(),
+            set_aside: SolvedState::default(),
             pgs_workspace: PgsWorkspace::default(),
             timings: StepTimings::default(),
             time: 0.0,
@@ -410,14 +410,14 @@ impl World {
                 .sum()
         };
         let before = energy(&self.bodies, &self.problem.bodies);
-        self.before_shock.save(&self.problem);
+        self.set_aside.save(&self.problem);
         pgs::shock_propagation(
             &mut self.problem,
             &mut self.pgs_workspace,
             self.contact_set.shock_order(&self.gravity),
         )?;
         if energy(&self.bodies, &self.problem.bodies) > before {
-            self.before_shock.restore(&mut self.problem);
+            self.set_aside.restore(&mut self.problem);
         }
         Ok(())
     }
@@ -425,25 +425,60 @@ impl World {
     /// The position pass of split impulses: when a contact's push exceeds what the velocity
     /// solve took, solves the velocity problem's blocks again from rest with the remaining
     /// pushes as targets, with the same solver; the solution's velocities, bounded by
-    /// `max_depenetration_speed`, move positions only (see [`World::step`]).
+    /// `max_depenetration_speed`, move positions only (see [`World::step`]). The pass reuses
+    /// the velocity problem in place — its rows, blocks and masses are the same — with the
+    /// velocity answer set aside and put back after, so nothing is copied but the answer.
     fn correct_penetration(&mut self) -> Result<(), StepError> {
-        let correction = &mut self.correction;
+        self.pseudo_velocities.clear();
         if self.biases.iter().all(|&bias| bias == 0.0) {
-            correction.bodies.clear();
             return Ok(());
         }
-        correction.bodies.clone_from(&self.problem.bodies);
-        for body in &mut correction.bodies {
+        self.set_aside.save(&self.problem);
+        for body in &mut self.problem.bodies {
             body.linear_velocity = Vector3::zeros();
             body.angular_velocity = Vector3::zeros();
         }
-        correction.rows.clone_from(&self.problem.rows);
-        for (row, &bias) in correction.rows.iter_mut().zip(&self.biases) {
-            row.target = bias;
+        // The pushes become the targets; the swap back below restores both.
+        let swap_targets = |problem: &mut Problem<ContactProjection>, biases: &mut [f64]| {
+            for (row, bias) in problem.rows.iter_mut().zip(biases) {
+                std::mem::swap(&mut row.target, bias);
+            }
+        };
+        swap_targets(&mut self.problem, &mut self.biases);
+        for row in &mut self.problem.rows {
             row.impulse = 0.0;
         }
-        correction.blocks.clone_from(&self.problem.blocks);
-        let result = match &self.settings.solver {
+        let result = self.solve_position_pass();
+        self.pseudo_velocities.clone_from(&self.problem.bodies);
+        swap_targets(&mut self.problem, &mut self.biases);
+        self.set_aside.restore(&mut self.problem);
+        if let Err(source) = result {
+            return Err(StepError::Solver {
+                pair: self.contact_of_error(&source),
+                source,
+            });
+        }
+        // Pushes add up along chains of overlapping bodies; no body is moved faster than one
+        // contact may push.
+        let limit = self.settings.contact.max_depenetration_speed;
+        for (body, solid) in self.pseudo_velocities.iter_mut().zip(&self.geometry) {
+            let reach = solid.outline.size();
+            let speed = body
+                .linear_velocity
+                .norm()
+                .max(body.angular_velocity.norm() * reach);
+            if speed > limit {
+                body.linear_velocity *= limit / speed;
+                body.angular_velocity *= limit / speed;
+            }
+        }
+        Ok(())
+    }
+
+    /// The position pass's solve, on `problem` as [`World::correct_penetration`] set it up.
+    fn solve_position_pass(&mut self) -> Result<(), LcpError> {
+        let problem = &mut self.problem;
+        match &self.settings.solver {
             Solver::Pgs(params) => {
                 let from_rest = PgsParams {
                     warm_start: WarmStart::Off,
@@ -460,40 +495,18 @@ impl World {
                 // a stack whatever its height or mass ratio (1 kg under 1000 kg) is pushed apart
                 // at once, where sweeps from rest carry a push up one level per sweep. Without
                 // gravity there is no ground to go up from.
-                let solved = pgs::solve_in_place(correction, &mut self.pgs_workspace, &from_rest);
-                if solved.is_ok() && self.gravity != Vector3::zeros() {
+                pgs::solve_in_place(problem, &mut self.pgs_workspace, &from_rest)?;
+                if self.gravity != Vector3::zeros() {
                     pgs::shock_propagation(
-                        correction,
+                        problem,
                         &mut self.pgs_workspace,
                         self.contact_set.shock_order(&self.gravity),
-                    )
-                } else {
-                    solved.map(drop)
+                    )?;
                 }
+                Ok(())
             }
-            Solver::Direct(params) => direct::solve(correction, params).map(drop),
-        };
-        if let Err(source) = result {
-            return Err(StepError::Solver {
-                pair: self.contact_of_error(&source),
-                source,
-            });
+            Solver::Direct(params) => direct::solve(problem, params).map(drop),
         }
-        // Pushes add up along chains of overlapping bodies; no body is moved faster than one
-        // contact may push.
-        let limit = self.settings.contact.max_depenetration_speed;
-        for (body, solid) in self.correction.bodies.iter_mut().zip(&self.geometry) {
-            let reach = solid.outline.size();
-            let speed = body
-                .linear_velocity
-                .norm()
-                .max(body.angular_velocity.norm() * reach);
-            if speed > limit {
-                body.linear_velocity *= limit / speed;
-                body.angular_velocity *= limit / speed;
-            }
-        }
-        Ok(())
     }
 
     /// The contact a solver error names through its block, if any.
@@ -516,7 +529,7 @@ impl World {
     /// The position correction's pseudo-velocities, when the step has one, move the positions
     /// too.
     fn integrate(&mut self, dt: f64) -> Result<(), StepError> {
-        let corrections = &self.correction.bodies;
+        let corrections = &self.pseudo_velocities;
         self.motions.clear();
         for (index, (body, solved)) in self.bodies.iter().zip(&self.problem.bodies).enumerate() {
             if body.is_fixed() || body.asleep {
