@@ -8,7 +8,10 @@
 //! 3. tilt: the centre of pressure `p = (−τ2, τ1) / f3` (relative to `G`) must lie in the
 //!    polygon; if not, it moves to the nearest point `p̂` and `τ1 = p̂_y f3`, `τ2 = −p̂_x f3`.
 //!
-//! A point support thus carries no torque, a segment only tilt about itself and its line twist.
+//! A segment thus carries only tilt about itself and its line's twist, and a point no torque at
+//! all: a point support is built as the vertex model's 3-row block (normal and friction at the
+//! point), the same constraint without the three rows its set bounds to zero. On a pile of 1000
+//! cubes half the contacts are points.
 
 use nalgebra::Point2;
 use tatami_geometry::{ConvexPolygon, PolygonKind, Sector};
@@ -16,6 +19,7 @@ use tatami_lcp::{Block, LinearSet, Problem, Projection, Row, RowBound};
 
 use crate::jacobian::{angular_jacobian, point_jacobian, point_motion, twist_rate};
 use crate::target::normal_target;
+use crate::vertex;
 use crate::{Contact, ContactProjection, ContactSettings, FrictionCone, TwistRadius};
 
 /// Rows of a face constraint.
@@ -184,7 +188,8 @@ impl Projection for FaceProjection {
 }
 
 /// Appends one 6-row block at the support polygon's centroid and each row's penetration bias
-/// to `biases`. The contact must be validated.
+/// to `biases` — for a point support, the vertex model's 3-row block (see the module doc). The
+/// contact must be validated.
 pub(crate) fn build(
     contact: &Contact,
     dt: f64,
@@ -192,6 +197,9 @@ pub(crate) fn build(
     problem: &mut Problem<ContactProjection>,
     biases: &mut Vec<f64>,
 ) {
+    if contact.support.kind() == PolygonKind::Point {
+        return vertex::build(contact, dt, settings, problem, biases);
+    }
     let frame = &contact.frame;
     let centre = contact.support.centroid();
     let p = frame.to_world(&centre);
