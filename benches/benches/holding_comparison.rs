@@ -10,6 +10,7 @@
 use std::path::Path;
 use std::time::{Duration, Instant};
 
+use tatami_benches::RapierF64;
 use tatami_world::scene::Scene;
 
 /// A scene file of `scenes/` and the window (s) over which its bodies' motion is measured.
@@ -111,91 +112,20 @@ fn tatami(case: &Case, scene: &Scene) -> Result<Measured, String> {
     }
 }
 
-/// The scene in one of Rapier's two builds (the crates differ only in `Real`).
-macro_rules! rapier_scene {
-    ($name:ident, $rapier:ident, $real:ty) => {
+tatami_benches::rapier_scene!(
+    /// A scene in rapier3d (f32).
+    RapierF32,
+    rapier3d,
+    f32
+);
+
+/// The scene in one of Rapier's two builds.
+macro_rules! rapier_run {
+    ($name:ident, $scene:ident) => {
         fn $name(case: &Case, scene: &Scene) -> Result<Measured, String> {
-            use $rapier::prelude::*;
-            let mut bodies = RigidBodySet::new();
-            let mut colliders = ColliderSet::new();
-            let mut handles = Vec::new();
-            for desc in &scene.bodies {
-                let tatami_world::Shape::Box { half_extents } = desc.shape else {
-                    return Err("only boxes are built in Rapier here".to_owned());
-                };
-                if desc.rotation.angle() != 0.0 {
-                    return Err("only unrotated bodies are built in Rapier here".to_owned());
-                }
-                let p = desc.position;
-                let translation = Vector::new(p.x as $real, p.y as $real, p.z as $real);
-                let body = if desc.fixed {
-                    RigidBodyBuilder::fixed()
-                } else {
-                    RigidBodyBuilder::dynamic().can_sleep(false)
-                };
-                let handle = bodies.insert(body.translation(translation));
-                let volume = 8.0 * half_extents.x * half_extents.y * half_extents.z;
-                let density = match desc.mass {
-                    tatami_world::MassSpec::Mass(m) => m / volume,
-                    tatami_world::MassSpec::Density(rho) => rho,
-                };
-                colliders.insert_with_parent(
-                    ColliderBuilder::cuboid(
-                        half_extents.x as $real,
-                        half_extents.y as $real,
-                        half_extents.z as $real,
-                    )
-                    .density(density as $real)
-                    .friction(desc.static_friction as $real),
-                    handle,
-                    &mut bodies,
-                );
-                handles.push(handle);
-            }
-            let parameters = IntegrationParameters {
-                dt: scene.dt as $real,
-                ..IntegrationParameters::default()
-            };
-            let g = scene.gravity;
-            let gravity = Vector::new(g.x as $real, g.y as $real, g.z as $real);
-            let world = std::cell::RefCell::new((
-                bodies,
-                colliders,
-                PhysicsPipeline::new(),
-                IslandManager::new(),
-                BroadPhaseBvh::new(),
-                NarrowPhase::new(),
-                ImpulseJointSet::new(),
-                MultibodyJointSet::new(),
-                CCDSolver::new(),
-            ));
-            let step = || {
-                let w = &mut *world.borrow_mut();
-                w.2.step(
-                    gravity,
-                    &parameters,
-                    &mut w.3,
-                    &mut w.4,
-                    &mut w.5,
-                    &mut w.0,
-                    &mut w.1,
-                    &mut w.6,
-                    &mut w.7,
-                    &mut w.8,
-                    &(),
-                    &(),
-                );
-            };
-            let positions = || {
-                let w = world.borrow();
-                handles
-                    .iter()
-                    .map(|&h| {
-                        let t = w.0[h].translation();
-                        [t.x as f64, t.y as f64, t.z as f64]
-                    })
-                    .collect()
-            };
+            let world = std::cell::RefCell::new($scene::new(scene)?);
+            let step = || world.borrow_mut().step();
+            let positions = || world.borrow().positions();
             Ok(measure(case, scene.dt, step, positions))
         }
     };
@@ -204,8 +134,8 @@ macro_rules! rapier_scene {
 /// One engine's run of a case.
 type Engine = fn(&Case, &Scene) -> Result<Measured, String>;
 
-rapier_scene!(rapier_f64, rapier3d_f64, f64);
-rapier_scene!(rapier_f32, rapier3d, f32);
+rapier_run!(rapier_f64, RapierF64);
+rapier_run!(rapier_f32, RapierF32);
 
 fn main() {
     let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");

@@ -3,6 +3,10 @@
 //! Each bench target builds its scenes from here so that every benchmark of a concept measures
 //! the same input.
 
+pub mod rapier_scene;
+
+pub use rapier_scene::RapierF64;
+
 use nalgebra::{DMatrix, DVector, Matrix3, Point2, Vector3};
 use tatami_geometry::ConvexPolygon;
 use tatami_lcp::{Block, BodyId, BoundsProjection, Jacobian, Problem, Row, RowBound, SolverBody};

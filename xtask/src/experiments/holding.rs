@@ -2,9 +2,12 @@
 //! stack, a 1 kg cube under a 1000 kg one, a pyramid of 55 cubes, a tower of 100 cubes of 2 m at
 //! 60 Hz — under each contact model with the default solver settings (warm start, the
 //! penetration push in a position pass). The drift is the largest displacement of any body from
-//! where it started. Rapier's figures on the same files are in `benches/README.md`
-//! (`holding_comparison`), which keeps Rapier out of this tool's build.
+//! where it started. rapier3d-f64 runs the same files beside them (its defaults, sleeping off;
+//! [`tatami_benches::RapierF64`], which the `holding_comparison` bench times too).
 
+use nalgebra::Point3;
+use plotters::style::RGBColor;
+use tatami_benches::RapierF64;
 use tatami_world::ContactModel;
 
 use super::chart::{self, Axis, Chart, Legend, Series, Stroke};
@@ -14,7 +17,7 @@ use super::{Outcome, Progress};
 
 /// The CSV file.
 pub const FILE: &str = "holding.csv";
-/// Columns of [`FILE`].
+/// Columns of [`FILE`]; `model` names the contact model, or `rapier3d-f64` for Rapier's run.
 pub const HEADER: [&str; 5] = ["scene", "model", "step", "time", "drift_m"];
 
 /// Drift below which a scene is drawn at this floor on the logarithmic axis (m).
@@ -69,60 +72,124 @@ const CASES: [Case; 5] = [
     },
 ];
 
+/// Who ran a trace: Tatami under a contact model, or rapier3d-f64 on the same file.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Engine {
+    Tatami(ContactModel),
+    Rapier,
+}
+
+impl Engine {
+    fn name(self) -> &'static str {
+        match self {
+            Self::Tatami(model) => model.name(),
+            Self::Rapier => "rapier3d-f64",
+        }
+    }
+
+    fn colour(self) -> RGBColor {
+        match self {
+            Self::Tatami(model) => chart::model_colour(model),
+            Self::Rapier => RGBColor(127, 127, 127),
+        }
+    }
+}
+
 /// One run: the drift from the start after every step (step 0 first), and over the case's
 /// window.
 struct Trace {
     scene: &'static str,
-    model: ContactModel,
+    engine: Engine,
     dt: f64,
     drift: Vec<f64>,
     window_drift: f64,
 }
 
-/// The largest displacement of `world`'s bodies from `positions`.
-fn largest_move(world: &tatami_world::World, positions: &[nalgebra::Point3<f64>]) -> f64 {
-    world
-        .bodies()
-        .iter()
-        .zip(positions)
-        .map(|(b, p)| (b.position() - p).norm())
+/// The largest distance between matching points of `now` and `then`.
+fn largest_move(now: &[Point3<f64>], then: &[Point3<f64>]) -> f64 {
+    now.iter()
+        .zip(then)
+        .map(|(a, b)| (a - b).norm())
         .fold(0.0, f64::max)
 }
 
-/// Runs `case`'s scene under `model` for `steps` (the scene's own when `None`).
-fn trace(case: &Case, model: ContactModel, steps: Option<usize>) -> Result<Trace, String> {
-    let mut scene = case.file.load()?;
-    scene.settings.model = model;
-    let mut world = scene.world().map_err(|e| e.to_string())?;
-    let positions =
-        |w: &tatami_world::World| -> Vec<_> { w.bodies().iter().map(|b| b.position()).collect() };
-    let start = positions(&world);
-    let from = (case.from / scene.dt).round() as usize;
+/// Steps `world` `steps` times at `dt`, recording the drift of its `positions` from the start
+/// after every step and over `case`'s window.
+fn record_drift<W>(
+    case: &Case,
+    engine: Engine,
+    (dt, steps): (f64, usize),
+    world: &mut W,
+    step: impl Fn(&mut W) -> Result<(), String>,
+    positions: impl Fn(&W) -> Vec<Point3<f64>>,
+) -> Result<Trace, String> {
+    let start = positions(world);
+    let from = (case.from / dt).round() as usize;
     let mut settled = start.clone();
     let mut drift = vec![0.0];
-    for n in 1..=steps.unwrap_or(scene.steps) {
-        scenes::step(&mut world, scene.dt)?;
-        drift.push(largest_move(&world, &start));
+    for n in 1..=steps {
+        step(world)?;
+        let now = positions(world);
+        drift.push(largest_move(&now, &start));
         if n == from {
-            settled = positions(&world);
+            settled = now;
         }
     }
     Ok(Trace {
         scene: case.file.name.trim_end_matches(".json"),
-        model,
-        dt: scene.dt,
+        engine,
+        dt,
         drift,
-        window_drift: largest_move(&world, &settled),
+        window_drift: largest_move(&positions(world), &settled),
     })
+}
+
+/// Runs `case`'s scene in `engine` for `steps` (the scene's own when `None`).
+fn trace(case: &Case, engine: Engine, steps: Option<usize>) -> Result<Trace, String> {
+    let mut scene = case.file.load()?;
+    let run = (scene.dt, steps.unwrap_or(scene.steps));
+    match engine {
+        Engine::Tatami(model) => {
+            scene.settings.model = model;
+            let mut world = scene.world().map_err(|e| e.to_string())?;
+            record_drift(
+                case,
+                engine,
+                run,
+                &mut world,
+                |w| scenes::step(w, scene.dt),
+                |w| w.bodies().iter().map(|b| b.position()).collect(),
+            )
+        }
+        Engine::Rapier => {
+            let mut world = RapierF64::new(&scene)?;
+            record_drift(
+                case,
+                engine,
+                run,
+                &mut world,
+                |w| {
+                    w.step();
+                    Ok(())
+                },
+                |w| w.positions().into_iter().map(Point3::from).collect(),
+            )
+        }
+    }
 }
 
 /// Runs every scene under every model, writes the CSV and one chart per scene.
 pub fn run(quick: bool, out: &std::path::Path, progress: &Progress) -> Result<Outcome, String> {
-    let bar = progress.bar("holding", (CASES.len() * ContactModel::ALL.len()) as u64);
+    let engines: Vec<Engine> = ContactModel::ALL
+        .into_iter()
+        .map(Engine::Tatami)
+        .chain([Engine::Rapier])
+        .collect();
+    let bar = progress.bar("holding", (CASES.len() * engines.len()) as u64);
     let mut traces = Vec::new();
     for case in &CASES {
-        for model in ContactModel::ALL {
-            traces.push(trace(case, model, quick.then_some(100))?);
+        for &engine in &engines {
+            traces.push(trace(case, engine, quick.then_some(100))?);
             bar.inc(1);
         }
     }
@@ -131,7 +198,7 @@ pub fn run(quick: bool, out: &std::path::Path, progress: &Progress) -> Result<Ou
     let mut table = Table::create(out, FILE, &HEADER)?;
     for t in &traces {
         for (n, &d) in t.drift.iter().enumerate() {
-            table.record(record![t.scene, t.model.name(), n, n as f64 * t.dt, d])?;
+            table.record(record![t.scene, t.engine.name(), n, n as f64 * t.dt, d])?;
         }
     }
     table.finish()?;
@@ -143,7 +210,7 @@ pub fn run(quick: bool, out: &std::path::Path, progress: &Progress) -> Result<Ou
         let mut series: Vec<Series> = mine
             .iter()
             .map(|t| Series {
-                name: t.model.name().to_owned(),
+                name: t.engine.name().to_owned(),
                 points: t
                     .drift
                     .iter()
@@ -152,7 +219,7 @@ pub fn run(quick: bool, out: &std::path::Path, progress: &Progress) -> Result<Ou
                     .map(|(n, &d)| (n as f64 * t.dt, d.max(FLOOR)))
                     .collect(),
                 stroke: Stroke::Line,
-                colour: chart::model_colour(t.model),
+                colour: t.engine.colour(),
             })
             .collect();
         let end = mine
@@ -190,30 +257,37 @@ fn report(traces: &[Trace], files: Vec<&'static str>) -> Outcome {
          symmetric towers only.\n\n\
          **Tatami.** The holding scenes with the default settings (up to 15 PGS sweeps \
          warm-started by contact feature, the energy-guarded shock pass, the penetration push in \
-         a position pass), under each model. Drift = \
+         a position pass), under each model, and rapier3d-f64 (its defaults, sleeping off) on the \
+         same files. Drift = \
          the largest displacement of any body over the window the tests use (from 2 s on for the \
          pair and the leaning stack, which settle first; from the start for the others), then \
          from the start over the whole run, as charted.\n\n\
-         | scene | window (s) | required (default model) | vertex | patch | face | face, whole run |\n\
-         |---|---|---:|---:|---:|---:|---:|\n",
+         | scene | window (s) | required (default model) | vertex | patch | face | face, whole run | rapier3d-f64 |\n\
+         |---|---|---:|---:|---:|---:|---:|---:|\n",
     );
     let mut held = 0;
     for case in &CASES {
         let (name, bound) = (case.file.name.trim_end_matches(".json"), &case.bound);
-        let of = |model: ContactModel| traces.iter().find(|t| t.scene == name && t.model == model);
-        let window = |model| of(model).map_or(f64::NAN, |t| t.window_drift);
-        let whole = of(ContactModel::Face)
+        let of = |engine: Engine| {
+            traces
+                .iter()
+                .find(|t| t.scene == name && t.engine == engine)
+        };
+        let window = |engine| of(engine).map_or(f64::NAN, |t| t.window_drift);
+        let face = Engine::Tatami(ContactModel::Face);
+        let whole = of(face)
             .and_then(|t| t.drift.last().copied())
             .unwrap_or(f64::NAN);
-        if window(ContactModel::Face) <= *bound {
+        if window(face) <= *bound {
             held += 1;
         }
         text.push_str(&format!(
-            "| {name} | {}– | {bound} m | {:.2e} | {:.2e} | {:.2e} | {whole:.2e} |\n",
+            "| {name} | {}– | {bound} m | {:.2e} | {:.2e} | {:.2e} | {whole:.2e} | {:.2e} |\n",
             case.from,
-            window(ContactModel::Vertex),
-            window(ContactModel::Patch),
-            window(ContactModel::Face),
+            window(Engine::Tatami(ContactModel::Vertex)),
+            window(Engine::Tatami(ContactModel::Patch)),
+            window(face),
+            window(Engine::Rapier),
         ));
     }
     text.push_str(
