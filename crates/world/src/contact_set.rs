@@ -26,7 +26,7 @@ use std::ops::Range;
 use nalgebra::{Point3, UnitQuaternion, Vector3};
 use tatami_contact::{Contact, ContactModel, ContactProjection};
 use tatami_lcp::pgs::Support;
-use tatami_lcp::{Block, Problem, Projection, RowBound};
+use tatami_lcp::{Problem, Projection};
 
 use crate::load_estimate::LoadEstimate;
 use crate::support::FeatureId;
@@ -287,27 +287,25 @@ pub(crate) fn support_of(contact: &Contact, gravity: &Vector3<f64>) -> Support {
     }
 }
 
-/// Spreads the normal impulse `load` evenly over the normal rows (those bounded `λ ≥ 0`) of
-/// `blocks`.
+/// Spreads the normal impulse `load` evenly over the normal rows of `blocks` (each block's
+/// [`leading_normal_rows`](Projection::leading_normal_rows)).
 fn spread_over_normal_rows(
     problem: &mut Problem<ContactProjection>,
     blocks: &Range<usize>,
     load: f64,
 ) {
-    let is_normal = |block: &Block<ContactProjection>, k: usize| {
-        block.projection.bound(k) == Some(RowBound::NonNegative)
-    };
     let blocks = &problem.blocks[blocks.clone()];
     let normals: usize = blocks
         .iter()
-        .map(|b| (0..b.rows.len()).filter(|&k| is_normal(b, k)).count())
+        .map(|b| b.projection.leading_normal_rows())
         .sum();
     if normals == 0 {
         return;
     }
     for block in blocks {
-        for k in (0..block.rows.len()).filter(|&k| is_normal(block, k)) {
-            problem.rows[block.rows.start + k].impulse = load / normals as f64;
+        let first = block.rows.start;
+        for row in &mut problem.rows[first..first + block.projection.leading_normal_rows()] {
+            row.impulse = load / normals as f64;
         }
     }
 }
