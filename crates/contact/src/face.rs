@@ -129,9 +129,12 @@ impl Projection for FaceProjection {
     }
 
     fn admissible(&mut self, impulses: &[f64]) -> bool {
-        // Loaded (which a NaN is not), so the centre of pressure is defined.
+        // Loaded (which a NaN is not), so the centre of pressure is defined; unloaded, only the
+        // zero wrench is admissible. A cold-started stack's upper contacts start there (bodies
+        // falling together leave them nothing to do), and a whole step that lands on zero
+        // keeps the block whole for when its load arrives.
         let Some(p) = Self::centre_of_pressure(impulses) else {
-            return false;
+            return impulses.iter().all(|&x| x == 0.0);
         };
         let f3 = impulses[NORMAL];
         let within_cone = self

@@ -69,12 +69,14 @@ pub trait Projection {
         None
     }
 
-    /// How many of the block's first rows are its normal rows, with the promise that while they
-    /// are all zero [`project`](Projection::project) sets every other row to zero too — a
-    /// contact cone, where friction and torques need a normal force. PGS then ends a block's
-    /// update once its normal rows have left every impulse at zero (a contact parting, or not
-    /// yet loaded): the other rows' steps would all be projected back to zero. 0 (the default)
-    /// makes no such promise.
+    /// How many of the block's first rows are its normal rows, with the promise that
+    /// [`project`](Projection::project) clamps each of them at zero from below and, while they
+    /// are all zero, sets every other row to zero too — a contact cone, where friction and
+    /// torques need a normal force. PGS then ends a block's update once its normal rows have
+    /// left every impulse at zero (a contact parting, or not yet loaded): the other rows' steps
+    /// would all be projected back to zero; and it skips a block that carries nothing when its
+    /// normal rows' steps would all be clamped back to zero. 0 (the default) makes no such
+    /// promise.
     fn leading_normal_rows(&self) -> usize {
         0
     }

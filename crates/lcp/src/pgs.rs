@@ -27,8 +27,8 @@
 //!
 //! **Whole blocks.** A block that asks for it ([`Projection::whole_block`]: the face model's
 //! faces) is first stepped whole, `Δλ = −ω K⁻¹ e` with `K` its own 6 × 6 block of `A`
-//! (factored by Cholesky when first needed in a solve), and the step is kept if it lands in the
-//! admissible set — the sticking face with its centre of pressure inside, by far the commonest
+//! (inverted, through its Cholesky factor, when first needed in a solve), and the step is kept
+//! if it lands in the admissible set — the sticking face with its centre of pressure inside, by far the commonest
 //! case, is then solved exactly for its neighbours' current velocities in one update. Otherwise
 //! the block is updated row by row as above, and for the rest of the solve. This does not move
 //! the fixed points: where the whole step is kept, the row-by-row update converges to the same
@@ -36,17 +36,22 @@
 //! fixed point would be off Coulomb's slip direction, see above). It lowered the drift of the
 //! holding scenes (leaning stack 0.38 → 0.25 mm, the 820-cube pyramid's largest displacement
 //! 14.5 → 10.6 cm) and brought the 210-cube pyramid to rest within the contact set's reuse
-//! tolerance (its collision time fell tenfold); a sweep costs more, though: the 100-cube tower's
-//! cold solve of 15 sweeps takes 248 µs against 187 µs row by row (`world` bench).
+//! tolerance (its collision time fell tenfold). Whole steps tried on faces with no load yet
+//! made a cold start's sweeps slow; they are no longer tried there (see below).
 //!
 //! **Unloaded blocks.** A block whose projection names its normal rows
 //! ([`Projection::leading_normal_rows`]: a contact cone, where friction and torques need a
 //! normal force) ends its row-by-row update once those rows leave every impulse at zero — a
-//! contact parting, or not loaded yet, as most of a cold-started tall tower is: the other rows'
-//! steps would each be projected back to zero, so the answer is the same to the bit (to the sign
-//! of a zero; `tests/unloaded_blocks.rs`). On the 100-cube tower's cold 15-sweep solve the face
-//! model's time fell to 0.26× the vertex model's (140 against 546 µs, `world` bench), from
-//! about 0.5×.
+//! contact parting, or not loaded yet, as most of a cold-started tall tower is (its load climbs
+//! about one contact per sweep): the other rows' steps would each be projected back to zero, so
+//! the answer is the same to the bit (to the sign of a zero; `tests/unloaded_blocks.rs`). A
+//! block that carries nothing and whose normal rows' steps would each be clamped back to zero
+//! is skipped after reading those rows alone, before any whole step: a face then meets its
+//! first whole step, and pays for `K⁻¹`, only once it is loaded. Before, an unloaded face's
+//! whole step landed on zero, which sent it row by row for the rest of the solve, after paying
+//! for `K⁻¹`. On the 100-cube tower's first step (stack-timing experiment, solves timed
+//! interleaved) the face model's solve went from 0.50× the vertex model's to 0.37×; on the
+//! `world` bench's cold solve of a settled 100-cube tower, from 175 to 63 µs (vertex 629 µs).
 //!
 //! **Stopping.** With [`PgsParams::tolerance`] > 0 the solve ends after the first sweep in which
 //! no row's update moved that row's velocity by as much as the tolerance. Warm-started from an
@@ -159,9 +164,9 @@ enum Whole {
     /// set once in this solve (a block at a bound — sliding, tipping, parting — stays there for
     /// a while, and would pay for both updates every sweep).
     No,
-    /// Not tried yet in this solve; `K` is factored when it is.
+    /// Not tried yet in this solve; `K` is inverted when it is.
     Untried,
-    /// `K`'s Cholesky factor is in [`PgsWorkspace::factors`].
+    /// `K⁻¹` is in [`PgsWorkspace::inverses`].
     Ready,
 }
 
@@ -171,9 +176,12 @@ pub struct PgsWorkspace {
     responses: Vec<RowResponse>,
     /// Per block: how it is stepped whole in this solve.
     whole: Vec<Whole>,
-    /// Per block: `L` of `K = L Lᵀ` (`K` padded with the identity to 6 × 6) where `whole`
-    /// says `Ready`. Only grown, never cleared: entries are written before they are read.
-    factors: Vec<Matrix6<f64>>,
+    /// Per block: whether any of its impulses is nonzero (kept by the sweeps, so a skipped
+    /// block's rows are not read).
+    loaded: Vec<bool>,
+    /// Per block: `K⁻¹` (`K` padded with the identity to 6 × 6) where `whole` says `Ready`.
+    /// Only grown, never cleared: entries are written before they are read.
+    inverses: Vec<Matrix6<f64>>,
     block_impulse: Vec<f64>,
     /// The block's impulses as already pushed into the velocities.
     block_applied: Vec<f64>,
@@ -234,8 +242,9 @@ fn prepare<P: Projection>(
     workspace.block_impulse.resize(widest, 0.0);
     workspace.block_applied.resize(widest, 0.0);
     workspace.whole.clear();
-    if workspace.factors.len() < blocks.len() {
-        workspace.factors.resize(blocks.len(), Matrix6::zeros());
+    workspace.loaded.clear();
+    if workspace.inverses.len() < blocks.len() {
+        workspace.inverses.resize(blocks.len(), Matrix6::zeros());
     }
     for block in blocks.iter() {
         let (a, b) = (bodies[block.body_a.0], bodies[block.body_b.0]);
@@ -255,6 +264,10 @@ fn prepare<P: Projection>(
                 WarmStart::Off => rows[r].impulse = 0.0,
             }
         }
+        let loaded = rows[block.rows.clone()]
+            .iter()
+            .any(|row| row.impulse != 0.0);
+        workspace.loaded.push(loaded);
     }
 }
 
@@ -290,11 +303,14 @@ fn sweep<P: Projection>(
 ) -> Result<Change, LcpError> {
     let mut largest_change = Change::default();
     for index in 0..problem.blocks.len() {
+        if stays_unloaded(problem, workspace, index, relaxation) {
+            continue;
+        }
         let rows = problem.blocks[index].rows.clone();
         if let Whole::Untried = workspace.whole[index] {
-            workspace.whole[index] = match whole_block_factor(problem, workspace, index) {
-                Some(factor) => {
-                    workspace.factors[index] = factor;
+            workspace.whole[index] = match whole_block_inverse(problem, workspace, index) {
+                Some(inverse) => {
+                    workspace.inverses[index] = inverse;
                     Whole::Ready
                 }
                 None => Whole::No,
@@ -302,8 +318,7 @@ fn sweep<P: Projection>(
         }
         let whole = match workspace.whole[index] {
             Whole::Ready => {
-                let factor = workspace.factors[index];
-                let step = update_whole_block(problem, workspace, index, &factor, relaxation)?;
+                let step = update_whole_block(problem, workspace, index, relaxation)?;
                 if step.is_none() {
                     workspace.whole[index] = Whole::No;
                 }
@@ -313,18 +328,53 @@ fn sweep<P: Projection>(
         };
         let change = match whole {
             Some(change) => change,
-            None => update_block(problem, workspace, index, rows, relaxation)?,
+            None => update_block(problem, workspace, index, rows.clone(), relaxation)?,
         };
+        workspace.loaded[index] = problem.rows[rows].iter().any(|row| row.impulse != 0.0);
         largest_change = largest_change.max(change);
     }
     Ok(largest_change)
 }
 
-/// The Cholesky factor `L` (`K = L Lᵀ`) of block `index`, with `K = J M⁻¹ Jᵀ` its own part of
+/// Whether block `index` carries nothing and its normal rows' steps would leave it so: each
+/// would push its row below zero, where the projection clamps it back ([`Projection::
+/// leading_normal_rows`]). The block's update would then change nothing, so the sweep looks at
+/// its normal rows alone and moves on — a contact parting, or one not loaded yet, as are most
+/// of a cold-started tall tower's contacts for most of its sweeps (the load climbs about one
+/// contact per sweep). Neither is the block stepped whole: an unloaded face keeps its first
+/// whole step, and the `K⁻¹` it needs, for when its load arrives.
+fn stays_unloaded<P: Projection>(
+    problem: &Problem<P>,
+    workspace: &PgsWorkspace,
+    index: usize,
+    relaxation: f64,
+) -> bool {
+    let block = &problem.blocks[index];
+    let normals = block.projection.leading_normal_rows();
+    if normals == 0 || workspace.loaded[index] {
+        return false;
+    }
+    let rows = &problem.rows[block.rows.clone()];
+    let (a, b) = (
+        &problem.bodies[block.body_a.0],
+        &problem.bodies[block.body_b.0],
+    );
+    let responses = &workspace.responses[block.rows.clone()];
+    rows.iter()
+        .zip(responses)
+        .take(normals)
+        .all(|(row, response)| {
+            // The row-by-row step from zero; a NaN is not `≤ 0` and goes on to be reported.
+            -relaxation * response.effective_mass * (row.jacobian.velocity(a, b) - row.target)
+                <= 0.0
+        })
+}
+
+/// `K⁻¹` of block `index` (through its Cholesky factor), with `K = J M⁻¹ Jᵀ` its own part of
 /// `A` (symmetric; padded with the identity to 6 × 6); `None` if `K` is not positive definite.
-/// Factored once per solve, it costs two triangular solves per update — cheaper than forming
-/// `K⁻¹` when a converged block takes one or two whole steps in a solve.
-fn whole_block_factor<P: Projection>(
+/// Inverted once per solve, it costs one 6 × 6 product per update instead of two triangular
+/// solves with the factor: the 100-cube face tower's first-step solve took 9% less time.
+fn whole_block_inverse<P: Projection>(
     problem: &Problem<P>,
     workspace: &PgsWorkspace,
     index: usize,
@@ -339,7 +389,7 @@ fn whole_block_factor<P: Projection>(
             k[(j, i)] = k[(i, j)];
         }
     }
-    k.cholesky().map(|c| c.unpack())
+    k.cholesky().map(|c| c.inverse())
 }
 
 /// The whole-block step: `Δλ = −ω K⁻¹ e` for the block's velocity errors `e`, kept only if
@@ -351,7 +401,6 @@ fn update_whole_block<P: Projection>(
     problem: &mut Problem<P>,
     workspace: &PgsWorkspace,
     index: usize,
-    factor: &Matrix6<f64>,
     relaxation: f64,
 ) -> Result<Option<Change>, LcpError> {
     let Problem {
@@ -367,9 +416,7 @@ fn update_whole_block<P: Projection>(
     for (e, row) in error.iter_mut().zip(rows.iter()) {
         *e = row.jacobian.velocity(&bodies[ia], &bodies[ib]) - row.target;
     }
-    let mut delta = error * -relaxation;
-    factor.solve_lower_triangular_unchecked_mut(&mut delta);
-    factor.tr_solve_lower_triangular_unchecked_mut(&mut delta);
+    let delta = workspace.inverses[index] * error * -relaxation;
     let mut trial = [0.0; WHOLE_BLOCK_ROWS];
     for (k, row) in rows.iter().enumerate() {
         trial[k] = row.impulse + delta[k];

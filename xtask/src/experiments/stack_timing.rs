@@ -10,11 +10,12 @@
 use std::time::{Duration, Instant};
 
 use tatami_lcp::pgs::{self, PgsWorkspace};
-use tatami_lcp::{Problem, Projection, direct};
+use tatami_lcp::{Problem, direct};
 
 use tatami_world::scene::Scene;
 use tatami_world::{
-    ContactModel, DirectParams, PgsParams, Solver, WarmStart, World, WorldSettings,
+    ContactModel, ContactProjection, DirectParams, PgsParams, Solver, WarmStart, World,
+    WorldSettings,
 };
 
 use super::chart::{self, Axis, Chart, Series, Stroke};
@@ -183,68 +184,97 @@ fn quantiles(mut samples: Vec<Duration>) -> (f64, f64) {
     (at(0.5), at(0.9))
 }
 
-/// Solves copies of `problem` `repeats` times (plus a fifth as warm-up) and returns the times
-/// of the solver calls alone.
-fn time_solves<P: Projection + Clone>(
-    problem: &Problem<P>,
-    solver: &Solver,
+/// Solves copies of each case's problem `repeats` times (plus a fifth as warm-up) and returns
+/// the times of the solver calls alone, per case. The cases are interleaved: each round solves
+/// every problem once, in turn, so all of them meet the same machine. A shared machine's speed
+/// drifts over seconds; timing one configuration after the other put that drift into their
+/// ratio (the face/vertex ratio at 100 cubes read anywhere from 0.36 to 0.81 over four runs).
+fn time_solves(
+    cases: &[(Problem<ContactProjection>, Solver)],
     repeats: usize,
-) -> Result<Vec<Duration>, String> {
-    let mut workspace = PgsWorkspace::default();
+) -> Result<Vec<Vec<Duration>>, String> {
+    let mut workspaces = vec![PgsWorkspace::default(); cases.len()];
     let warm_up = repeats.div_ceil(5);
-    let mut times = Vec::with_capacity(repeats);
+    let mut times = vec![Vec::with_capacity(repeats); cases.len()];
     for i in 0..warm_up + repeats {
-        let mut copy = problem.clone();
-        let started = Instant::now();
-        match solver {
-            Solver::Pgs(params) => pgs::solve_in_place(&mut copy, &mut workspace, params).map(drop),
-            Solver::Direct(params) => direct::solve(&mut copy, params).map(drop),
-        }
-        .map_err(|e| e.to_string())?;
-        if i >= warm_up {
-            times.push(started.elapsed());
+        for (((problem, solver), workspace), times) in
+            cases.iter().zip(&mut workspaces).zip(&mut times)
+        {
+            let mut copy = problem.clone();
+            let started = Instant::now();
+            match solver {
+                Solver::Pgs(params) => pgs::solve_in_place(&mut copy, workspace, params).map(drop),
+                Solver::Direct(params) => direct::solve(&mut copy, params).map(drop),
+            }
+            .map_err(|e| e.to_string())?;
+            if i >= warm_up {
+                times.push(started.elapsed());
+            }
         }
     }
     Ok(times)
 }
 
+/// Measures `configs` on a tower of `cubes`: their first-step solves timed together (see
+/// [`time_solves`]), then a run of `steps` steps each.
 fn measure(
     template: &Scene,
-    config: Config,
+    configs: &[Config],
     cubes: usize,
     steps: usize,
     repeats: usize,
-) -> Result<Run, String> {
-    let solver = config.solver();
-    let mut world = tower(template, cubes, config.settings(template))?;
-    let problem = world.prepare_step(template.dt).map_err(|e| e.to_string())?;
-    let rows = problem.rows.len();
+) -> Result<Vec<Run>, String> {
+    let mut cases = Vec::with_capacity(configs.len());
+    for config in configs {
+        let mut world = tower(template, cubes, config.settings(template))?;
+        let problem = world.prepare_step(template.dt).map_err(|e| e.to_string())?;
+        cases.push((problem.clone(), config.solver()));
+    }
+    let fewest_rows = cases.iter().map(|(p, _)| p.rows.len()).min().unwrap_or(0);
     // Small towers solve in microseconds: enough repeats for ~10k row sweeps keep the clock's
     // resolution and the machine's noise out of the median.
-    let repeats = if config.direct {
+    let repeats = if configs.iter().any(|c| c.direct) {
         repeats
     } else {
-        repeats.max(10_000 / rows.max(1))
+        repeats.max(10_000 / fewest_rows.max(1))
     };
-    let (median_ms, p90_ms) = match time_solves(problem, &solver, repeats) {
-        Ok(times) => quantiles(times),
-        Err(e) => {
-            return Ok(Run {
-                config,
-                cubes,
-                steps: 0,
-                rows,
-                median_ms: f64::NAN,
-                p90_ms: f64::NAN,
-                run_median_ms: f64::NAN,
-                top_drop: 0.0,
-                top_shift: 0.0,
-                max_penetration: 0.0,
-                stands: false,
-                failure: Some(format!("first step: {e}")),
-            });
-        }
-    };
+    let timed = time_solves(&cases, repeats);
+    let mut runs = Vec::with_capacity(configs.len());
+    for (k, (config, (problem, _))) in configs.iter().zip(&cases).enumerate() {
+        let rows = problem.rows.len();
+        let (median_ms, p90_ms) = match &timed {
+            Ok(times) => quantiles(times[k].clone()),
+            Err(e) => {
+                runs.push(Run {
+                    config: *config,
+                    cubes,
+                    steps: 0,
+                    rows,
+                    median_ms: f64::NAN,
+                    p90_ms: f64::NAN,
+                    run_median_ms: f64::NAN,
+                    top_drop: 0.0,
+                    top_shift: 0.0,
+                    max_penetration: 0.0,
+                    stands: false,
+                    failure: Some(format!("first step: {e}")),
+                });
+                continue;
+            }
+        };
+        runs.push(Run {
+            rows,
+            median_ms,
+            p90_ms,
+            ..simulate(template, *config, cubes, steps)?
+        });
+    }
+    Ok(runs)
+}
+
+/// Runs `config`'s tower for `steps` steps; the first step's figures (rows, solve times) are
+/// left for the caller.
+fn simulate(template: &Scene, config: Config, cubes: usize, steps: usize) -> Result<Run, String> {
     let mut world = tower(template, cubes, config.settings(template))?;
     let top = world.bodies().len() - 1;
     let start = world.bodies()[top].position();
@@ -278,9 +308,9 @@ fn measure(
         config,
         cubes,
         steps: world.steps(),
-        rows,
-        median_ms,
-        p90_ms,
+        rows: 0,
+        median_ms: f64::NAN,
+        p90_ms: f64::NAN,
         run_median_ms: quantiles(in_run).0,
         top_drop,
         top_shift: moved.xy().norm(),
@@ -323,11 +353,13 @@ pub fn run(plan: &Plan, out: &std::path::Path, progress: &Progress) -> Result<Ou
     );
     let mut runs = Vec::new();
     for &cubes in &plan.sizes {
-        for &config in &configs {
-            bar.set_message(format!("{} × {cubes}", config.label()));
-            let run = measure(&template, config, cubes, plan.steps, plan.repeats)?;
+        bar.set_message(format!("PGS × {cubes}"));
+        for run in measure(&template, &configs, cubes, plan.steps, plan.repeats)? {
             if let Some(failure) = &run.failure {
-                return Err(format!("{} tower of {cubes}: {failure}", config.label()));
+                return Err(format!(
+                    "{} tower of {cubes}: {failure}",
+                    run.config.label()
+                ));
             }
             runs.push(run);
             bar.inc(1);
@@ -340,18 +372,20 @@ pub fn run(plan: &Plan, out: &std::path::Path, progress: &Progress) -> Result<Ou
         for &cubes in &plan.sizes {
             bar.set_message(format!("{} × {cubes}", direct.label()));
             if stopped.is_none() {
-                let run = measure(
+                let measured = measure(
                     &template,
-                    direct,
+                    &[direct],
                     cubes,
                     plan.direct_steps,
                     plan.repeats.div_ceil(10),
                 )?;
-                let too_slow = run.median_ms > plan.direct_limit.as_secs_f64() * 1e3;
-                if too_slow || run.median_ms.is_nan() {
-                    stopped = Some(cubes);
+                for run in measured {
+                    let too_slow = run.median_ms > plan.direct_limit.as_secs_f64() * 1e3;
+                    if too_slow || run.median_ms.is_nan() {
+                        stopped = Some(cubes);
+                    }
+                    runs.push(run);
                 }
-                runs.push(run);
             }
             bar.inc(1);
         }
