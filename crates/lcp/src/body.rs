@@ -2,6 +2,8 @@
 
 use nalgebra::{Matrix3, Vector3};
 
+use crate::all_finite;
+
 /// Index of a body in [`Problem::bodies`](crate::Problem::bodies).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
 pub struct BodyId(pub usize);
@@ -34,8 +36,8 @@ impl SolverBody {
     /// All mass properties and velocities are finite.
     pub fn is_finite(&self) -> bool {
         self.inv_mass.is_finite()
-            && self.inv_inertia_world.iter().all(|x| x.is_finite())
-            && self.linear_velocity.iter().all(|x| x.is_finite())
-            && self.angular_velocity.iter().all(|x| x.is_finite())
+            & all_finite(self.inv_inertia_world.as_slice())
+            & all_finite(self.linear_velocity.as_slice())
+            & all_finite(self.angular_velocity.as_slice())
     }
 }

@@ -42,6 +42,12 @@ pub use lemke::lemke;
 pub use linear_set::{Budget, LinearSet};
 pub use row::{Jacobian, Row};
 
+/// Whether every value is finite, without a branch per value (`&`, not `&&`): bodies and rows
+/// are checked before every solve.
+fn all_finite(values: &[f64]) -> bool {
+    values.iter().fold(true, |all, x| all & x.is_finite())
+}
+
 /// Bodies, rows and blocks: one velocity-level contact problem.
 ///
 /// Rows of block `k` are `rows[blocks[k].rows.clone()]`. The solvers write impulses into the rows

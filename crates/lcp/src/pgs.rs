@@ -27,8 +27,8 @@
 //!
 //! **Whole blocks.** A block that asks for it ([`Projection::whole_block`]: the face model's
 //! faces) is first stepped whole, `Δλ = −ω K⁻¹ e` with `K` its own 6 × 6 block of `A`
-//! (inverted, through its Cholesky factor, when first needed in a solve), and the step is kept
-//! if it lands in the admissible set — the sticking face with its centre of pressure inside, by far the commonest
+//! (factored by Cholesky when first needed in a solve), and the step is kept if it lands in
+//! the admissible set — the sticking face with its centre of pressure inside, by far the commonest
 //! case, is then solved exactly for its neighbours' current velocities in one update. Otherwise
 //! the block is updated row by row as above, and for the rest of the solve. This does not move
 //! the fixed points: where the whole step is kept, the row-by-row update converges to the same
@@ -47,9 +47,9 @@
 //! the answer is the same to the bit (to the sign of a zero; `tests/unloaded_blocks.rs`). A
 //! block that carries nothing and whose normal rows' steps would each be clamped back to zero
 //! is skipped after reading those rows alone, before any whole step: a face then meets its
-//! first whole step, and pays for `K⁻¹`, only once it is loaded. Before, an unloaded face's
-//! whole step landed on zero, which sent it row by row for the rest of the solve, after paying
-//! for `K⁻¹`. On the 100-cube tower's first step (stack-timing experiment, solves timed
+//! first whole step, and pays for factoring `K`, only once it is loaded. Before, an unloaded
+//! face's whole step landed on zero, which sent it row by row for the rest of the solve, after
+//! paying for the factor. On the 100-cube tower's first step (stack-timing experiment, solves timed
 //! interleaved) the face model's solve went from 0.50× the vertex model's to 0.37×; on the
 //! `world` bench's cold solve of a settled 100-cube tower, from 175 to 63 µs (vertex 629 µs).
 //!
@@ -164,9 +164,9 @@ enum Whole {
     /// set once in this solve (a block at a bound — sliding, tipping, parting — stays there for
     /// a while, and would pay for both updates every sweep).
     No,
-    /// Not tried yet in this solve; `K` is inverted when it is.
+    /// Not tried yet in this solve; `K` is factored when it is.
     Untried,
-    /// `K⁻¹` is in [`PgsWorkspace::inverses`].
+    /// `K`'s Cholesky factor is in [`PgsWorkspace::factors`].
     Ready,
 }
 
@@ -179,9 +179,13 @@ pub struct PgsWorkspace {
     /// Per block: whether any of its impulses is nonzero (kept by the sweeps, so a skipped
     /// block's rows are not read).
     loaded: Vec<bool>,
-    /// Per block: `K⁻¹` (`K` padded with the identity to 6 × 6) where `whole` says `Ready`.
-    /// Only grown, never cleared: entries are written before they are read.
-    inverses: Vec<Matrix6<f64>>,
+    /// Per block: whether all its rows' responses are in `responses`. An unloaded block has
+    /// only its normal rows' until it is first updated: most blocks of a cold-started tall
+    /// tower never are in its solve.
+    responded: Vec<bool>,
+    /// Per block: `L` of `K = L Lᵀ` (`K` padded with the identity to 6 × 6) where `whole`
+    /// says `Ready`. Only grown, never cleared: entries are written before they are read.
+    factors: Vec<Matrix6<f64>>,
     block_impulse: Vec<f64>,
     /// The block's impulses as already pushed into the velocities.
     block_applied: Vec<f64>,
@@ -234,7 +238,7 @@ fn prepare<P: Projection>(
         rows,
         blocks,
     } = problem;
-    workspace.responses.clear();
+    // Every entry is written below.
     workspace
         .responses
         .resize(rows.len(), RowResponse::default());
@@ -243,31 +247,51 @@ fn prepare<P: Projection>(
     workspace.block_applied.resize(widest, 0.0);
     workspace.whole.clear();
     workspace.loaded.clear();
-    if workspace.inverses.len() < blocks.len() {
-        workspace.inverses.resize(blocks.len(), Matrix6::zeros());
+    workspace.responded.clear();
+    if workspace.factors.len() < blocks.len() {
+        workspace.factors.resize(blocks.len(), Matrix6::zeros());
     }
     for block in blocks.iter() {
-        let (a, b) = (bodies[block.body_a.0], bodies[block.body_b.0]);
-        let responses = &mut workspace.responses[block.rows.clone()];
-        responses_of(block, rows, &a, &b, responses);
         let asks = block.projection.whole_block() && block.rows.len() <= WHOLE_BLOCK_ROWS;
         workspace
             .whole
             .push(if asks { Whole::Untried } else { Whole::No });
-        for r in block.rows.clone() {
-            let response = workspace.responses[r];
-            match warm_start {
-                WarmStart::On => {
-                    let impulse = rows[r].impulse;
-                    apply(bodies, block.body_a.0, block.body_b.0, &response, impulse);
-                }
-                WarmStart::Off => rows[r].impulse = 0.0,
+        let loaded = match warm_start {
+            WarmStart::On => rows[block.rows.clone()]
+                .iter()
+                .any(|row| row.impulse != 0.0),
+            WarmStart::Off => {
+                let rows = &mut rows[block.rows.clone()];
+                rows.iter_mut().for_each(|row| row.impulse = 0.0);
+                false
+            }
+        };
+        workspace.loaded.push(loaded);
+        let (a, b) = (bodies[block.body_a.0], bodies[block.body_b.0]);
+        let responses = &mut workspace.responses[block.rows.clone()];
+        let normals = block.projection.leading_normal_rows();
+        if loaded || normals == 0 {
+            responses_of(block, rows, &a, &b, responses);
+            workspace.responded.push(true);
+        } else {
+            // Unloaded: what `stays_unloaded` reads, until the block is first updated.
+            let normal_rows = &rows[block.rows.clone()][..normals];
+            for (row, response) in normal_rows.iter().zip(responses.iter_mut()) {
+                *response = response_of(&row.jacobian, &a, &b);
+            }
+            workspace.responded.push(false);
+        }
+        if loaded {
+            for (row, response) in rows[block.rows.clone()].iter().zip(responses.iter()) {
+                apply(
+                    bodies,
+                    block.body_a.0,
+                    block.body_b.0,
+                    response,
+                    row.impulse,
+                );
             }
         }
-        let loaded = rows[block.rows.clone()]
-            .iter()
-            .any(|row| row.impulse != 0.0);
-        workspace.loaded.push(loaded);
     }
 }
 
@@ -307,10 +331,20 @@ fn sweep<P: Projection>(
             continue;
         }
         let rows = problem.blocks[index].rows.clone();
+        if !workspace.responded[index] {
+            let block = &problem.blocks[index];
+            let (a, b) = (
+                problem.bodies[block.body_a.0],
+                problem.bodies[block.body_b.0],
+            );
+            let responses = &mut workspace.responses[rows.clone()];
+            responses_of(block, &problem.rows, &a, &b, responses);
+            workspace.responded[index] = true;
+        }
         if let Whole::Untried = workspace.whole[index] {
-            workspace.whole[index] = match whole_block_inverse(problem, workspace, index) {
-                Some(inverse) => {
-                    workspace.inverses[index] = inverse;
+            workspace.whole[index] = match whole_block_factor(problem, workspace, index) {
+                Some(factor) => {
+                    workspace.factors[index] = factor;
                     Whole::Ready
                 }
                 None => Whole::No,
@@ -342,7 +376,7 @@ fn sweep<P: Projection>(
 /// its normal rows alone and moves on — a contact parting, or one not loaded yet, as are most
 /// of a cold-started tall tower's contacts for most of its sweeps (the load climbs about one
 /// contact per sweep). Neither is the block stepped whole: an unloaded face keeps its first
-/// whole step, and the `K⁻¹` it needs, for when its load arrives.
+/// whole step, and the factor it needs, for when its load arrives.
 fn stays_unloaded<P: Projection>(
     problem: &Problem<P>,
     workspace: &PgsWorkspace,
@@ -370,11 +404,12 @@ fn stays_unloaded<P: Projection>(
         })
 }
 
-/// `K⁻¹` of block `index` (through its Cholesky factor), with `K = J M⁻¹ Jᵀ` its own part of
+/// The Cholesky factor `L` (`K = L Lᵀ`) of block `index`, with `K = J M⁻¹ Jᵀ` its own part of
 /// `A` (symmetric; padded with the identity to 6 × 6); `None` if `K` is not positive definite.
-/// Inverted once per solve, it costs one 6 × 6 product per update instead of two triangular
-/// solves with the factor: the 100-cube face tower's first-step solve took 9% less time.
-fn whole_block_inverse<P: Projection>(
+/// Factored once per solve, it costs two triangular solves per update. Forming `K⁻¹` instead
+/// (one 6 × 6 product per update) took 9% off a cold-started tower's 15 sweeps but made the
+/// warm-started tower's step 20% slower, where a block takes one or two whole steps a solve.
+fn whole_block_factor<P: Projection>(
     problem: &Problem<P>,
     workspace: &PgsWorkspace,
     index: usize,
@@ -389,7 +424,7 @@ fn whole_block_inverse<P: Projection>(
             k[(j, i)] = k[(i, j)];
         }
     }
-    k.cholesky().map(|c| c.inverse())
+    k.cholesky().map(|c| c.unpack())
 }
 
 /// The whole-block step: `Δλ = −ω K⁻¹ e` for the block's velocity errors `e`, kept only if
@@ -416,7 +451,10 @@ fn update_whole_block<P: Projection>(
     for (e, row) in error.iter_mut().zip(rows.iter()) {
         *e = row.jacobian.velocity(&bodies[ia], &bodies[ib]) - row.target;
     }
-    let delta = workspace.inverses[index] * error * -relaxation;
+    let factor = &workspace.factors[index];
+    let mut delta = error * -relaxation;
+    factor.solve_lower_triangular_unchecked_mut(&mut delta);
+    factor.tr_solve_lower_triangular_unchecked_mut(&mut delta);
     let mut trial = [0.0; WHOLE_BLOCK_ROWS];
     for (k, row) in rows.iter().enumerate() {
         trial[k] = row.impulse + delta[k];

@@ -2,7 +2,7 @@
 
 use nalgebra::Vector3;
 
-use crate::SolverBody;
+use crate::{SolverBody, all_finite};
 
 /// The row's Jacobian: `w = linear_a·v_A + angular_a·ω_A + linear_b·v_B + angular_b·ω_B`.
 ///
@@ -22,6 +22,7 @@ pub struct Jacobian {
 
 impl Jacobian {
     /// `w = J v` for the bodies' current velocities.
+    #[inline]
     pub fn velocity(&self, a: &SolverBody, b: &SolverBody) -> f64 {
         self.linear_a.dot(&a.linear_velocity)
             + self.angular_a.dot(&a.angular_velocity)
@@ -30,9 +31,10 @@ impl Jacobian {
     }
 
     fn is_finite(&self) -> bool {
-        [self.linear_a, self.angular_a, self.linear_b, self.angular_b]
-            .iter()
-            .all(|v| v.iter().all(|x| x.is_finite()))
+        all_finite(self.linear_a.as_slice())
+            & all_finite(self.angular_a.as_slice())
+            & all_finite(self.linear_b.as_slice())
+            & all_finite(self.angular_b.as_slice())
     }
 }
 
