@@ -231,12 +231,12 @@ fn measure(
         cases.push((problem.clone(), config.solver()));
     }
     let fewest_rows = cases.iter().map(|(p, _)| p.rows.len()).min().unwrap_or(0);
-    // Small towers solve in microseconds: enough repeats for ~10k row sweeps keep the clock's
+    // Small towers solve in microseconds: enough repeats for ~100k row sweeps keep the clock's
     // resolution and the machine's noise out of the median.
     let repeats = if configs.iter().any(|c| c.direct) {
         repeats
     } else {
-        repeats.max(10_000 / fewest_rows.max(1))
+        repeats.max(100_000 / fewest_rows.max(1))
     };
     let timed = time_solves(&cases, repeats);
     let mut runs = Vec::with_capacity(configs.len());
@@ -540,8 +540,9 @@ fn report(plan: &Plan, runs: &[Run], direct_stopped: &[(ContactModel, usize)]) -
          with the number of boxes (Springhead, Intel i5-8250U).\n\n",
     );
     text.push_str(&format!(
-        "**Tatami.** The solver call alone, timed on each tower's first step (median of {} \
-         solves after a warm-up; dt = 0.01 s), then a run of {} steps with that solver to see \
+        "**Tatami.** The solver call alone, timed on each tower's first step (median of at \
+         least {} solves after a warm-up, the models' solves interleaved so that all meet the \
+         same machine; dt = 0.01 s), then a run of {} steps with that solver to see \
          whether the tower stands: a tower *stands* when its top cube has lost less than half \
          a cube of height; *drift* is how far the top cube moved. No warm start (the paper's \
          setting) unless noted.\n\n",
