@@ -46,12 +46,12 @@
 //! about one contact per sweep): the other rows' steps would each be projected back to zero, so
 //! the answer is the same to the bit (to the sign of a zero; `tests/unloaded_blocks.rs`). A
 //! block that carries nothing and whose normal rows' steps would each be clamped back to zero
-//! is skipped after reading those rows alone, before any whole step: a face then meets its
-//! first whole step, and pays for factoring `K`, only once it is loaded. Before, an unloaded
-//! face's whole step landed on zero, which sent it row by row for the rest of the solve, after
-//! paying for the factor. On the 100-cube tower's first step (stack-timing experiment, solves timed
-//! interleaved) the face model's solve went from 0.50× the vertex model's to 0.37×; on the
-//! `world` bench's cold solve of a settled 100-cube tower, from 175 to 63 µs (vertex 629 µs).
+//! is skipped after reading those rows alone, before any whole step, and its other rows'
+//! responses are computed only when it is first updated: a face then meets its first whole
+//! step, and pays for factoring `K`, only once it is loaded. Before, an unloaded face's whole
+//! step landed on zero, which sent it row by row for the rest of the solve, after paying for
+//! the factor. On the 100-cube tower's first step (stack-timing experiment, the models' solves
+//! timed interleaved) the face model's solve went from 0.50× the vertex model's to 0.34×.
 //!
 //! **Stopping.** With [`PgsParams::tolerance`] > 0 the solve ends after the first sweep in which
 //! no row's update moved that row's velocity by as much as the tolerance. Warm-started from an
