@@ -93,9 +93,9 @@ fn the_held_out_scenes_solve() {
 /// model, every answer within its residual tolerance — or say it failed.
 ///
 /// Seed 52 under the vertex model (1,188 unknowns) had no path of Lemke's with a residual below
-/// 1e-6 (the best reached 9e-5) and was refused with `LcpError::Inaccurate`; since Lemke rebuilds
-/// its tableau from the data every `REFACTOR_EVERY` pivots it is solved, and every problem here
-/// must be.
+/// 1e-6 (the best reached 9e-5) and was refused with `LcpError::Inaccurate`; since Lemke
+/// rebuilds its tableau from the data (after `REFACTOR_EVERY` pivots, then at doubling
+/// intervals) it is solved, and every problem here must be.
 #[test]
 fn random_piles_solve_under_every_model() {
     let (mut failed, mut retried) = (Vec::new(), 0);
@@ -134,7 +134,8 @@ fn random_piles_solve_under_every_model() {
 /// A pile on which every path of Lemke's used to end on a ray after about 376 pivots: seed 108
 /// of the `direct_piles` example under the vertex model (2,304 unknowns). By then the pivots'
 /// round-off had moved the tableau off a feasible basis (a basic value of −7 when rebuilt from
-/// the data); rebuilt every `REFACTOR_EVERY` pivots, one path solves it.
+/// the data); rebuilt after `REFACTOR_EVERY` pivots and at doubling intervals, one path
+/// solves it.
 #[test]
 fn a_pile_whose_round_off_ended_every_path_on_a_ray_is_solved() {
     let seed = 108;
