@@ -36,7 +36,7 @@ pub const FAER_LU_FROM: usize = 64;
 /// 300 to send every path off a feasible basis and onto a ray. A rebuild costs about `n`
 /// pivots' worth of work (1.6 s at n = 2,304); doubling the interval bounds what rebuilds add
 /// to a long path (one cycling to the pivot limit) to about `n log₂(pivots / 50)` pivots'
-/// worth, where rebuilding every 50 pivots made the fuzz corpus' direct solves twice as slow.
+/// worth, where rebuilding every 50 pivots made the fuzz corpus test take 1.6 times as long.
 /// Contact problems rarely need 50 pivots (crate README), so most solves never rebuild.
 pub const REFACTOR_EVERY: usize = 50;
 
