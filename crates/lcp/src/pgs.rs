@@ -238,7 +238,8 @@ fn prepare<P: Projection>(
         rows,
         blocks,
     } = problem;
-    // Every entry is written below.
+    // Entries are written before they are read: here, or (an unloaded block's other rows) when
+    // the block is first updated.
     workspace
         .responses
         .resize(rows.len(), RowResponse::default());
