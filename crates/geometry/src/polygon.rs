@@ -163,11 +163,32 @@ fn hull(points: &[Point2<f64>], tolerance: f64) -> Vec<Point2<f64>> {
     simplify(monotone_chain(points), tolerance)
 }
 
+/// Inputs of at most this many points are sorted in a buffer on the stack: a box face or a
+/// clipped overlap has 4 to 8, and a hull is built three times for every contact every step.
+const SORTED_ON_STACK: usize = 16;
+
 /// Andrew's monotone chain keeping strict left turns only, as the floating-point sign says.
 fn monotone_chain(points: &[Point2<f64>]) -> Vec<Point2<f64>> {
-    let mut sorted = points.to_vec();
+    let mut on_stack = [Point2::origin(); SORTED_ON_STACK];
+    let mut on_heap = Vec::new();
+    let sorted: &mut [Point2<f64>] = if points.len() <= SORTED_ON_STACK {
+        let buffer = &mut on_stack[..points.len()];
+        buffer.copy_from_slice(points);
+        buffer
+    } else {
+        on_heap.extend_from_slice(points);
+        &mut on_heap
+    };
     sorted.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
-    sorted.dedup();
+    // Repeated points dropped, in place (what `Vec::dedup` does).
+    let mut unique = 0;
+    for k in 0..sorted.len() {
+        if unique == 0 || sorted[k] != sorted[unique - 1] {
+            sorted[unique] = sorted[k];
+            unique += 1;
+        }
+    }
+    let sorted = &sorted[..unique];
 
     let mut chain: Vec<Point2<f64>> = Vec::with_capacity(sorted.len() + 1);
     let push = |chain: &mut Vec<Point2<f64>>, floor: usize, p: Point2<f64>| {
@@ -178,7 +199,7 @@ fn monotone_chain(points: &[Point2<f64>]) -> Vec<Point2<f64>> {
         }
         chain.push(p);
     };
-    for &p in &sorted {
+    for &p in sorted {
         push(&mut chain, 0, p);
     }
     // The upper hull runs back from the lower hull's last point, which stays in place.

@@ -1,7 +1,7 @@
 //! Collision: broad phase, parry's contact normal, support polygons with their feature ids,
 //! written into the persistent [`ContactSet`]. Plain data in, the set out, so it can be run and
 //! timed alone; a pair neither of whose bodies moved keeps its contact (see
-//! [`ContactSet::keep`]).
+//! [`ContactSet::meet`]).
 
 use nalgebra::Vector3;
 use rayon::prelude::*;
@@ -9,20 +9,20 @@ use tatami_contact::{Contact, Material};
 use tatami_lcp::BodyId;
 
 use crate::body::Body;
-use crate::broad_phase::overlapping_pairs;
-use crate::contact_set::{ContactSet, Pose};
+use crate::broad_phase::SweepAndPrune;
+use crate::contact_set::{Computed, ContactSet, Met};
 use crate::parry_bridge::{self, Collider};
-use crate::support::{FeatureId, FeaturePoint, Outline, support};
+use crate::support::{FeaturePoint, Outline, support};
 
 /// Reused buffers of the collision stage.
 #[derive(Debug, Default, Clone)]
 pub(crate) struct CollisionWorkspace {
     boxes: Vec<(Vector3<f64>, Vector3<f64>)>,
     is_static: Vec<bool>,
-    order: Vec<usize>,
+    broad_phase: SweepAndPrune,
     pairs: Vec<(usize, usize)>,
-    /// Pairs whose contact is computed afresh this step.
-    fresh: Vec<(usize, usize)>,
+    /// Pairs the contact set does not hold yet.
+    new: Vec<(usize, usize)>,
     features: Features,
 }
 
@@ -33,7 +33,7 @@ struct Features {
     b: Vec<FeaturePoint>,
 }
 
-/// Fewest fresh pairs worth handing to the thread pool: below this, its start-up costs more
+/// Fewest pairs to compute worth handing to the thread pool: below this, its start-up costs more
 /// than the pairs (a few µs against about 1 µs a box pair).
 const PARALLEL_PAIRS: usize = 32;
 
@@ -71,54 +71,58 @@ pub(crate) fn detect(
     workspace
         .is_static
         .extend(bodies.iter().map(|b| !b.is_dynamic()));
-    overlapping_pairs(
+    workspace.broad_phase.overlapping_pairs(
         &workspace.boxes,
         &workspace.is_static,
-        &mut workspace.order,
         &mut workspace.pairs,
     );
-    // Stages: the pairs whose contact must be computed afresh, in order; their contacts, on
-    // every core (each is a pure function of the two bodies, so the result does not depend on
-    // the number of threads); then the set, in pair order.
-    workspace.fresh.clear();
+    // Stages: the set meets every overlapping pair, in order; the pairs it holds that moved are
+    // recomputed in place, and the new pairs computed, on every core (each contact is a pure
+    // function of the two bodies, so the result does not depend on the number of threads); the
+    // new pairs join the set in pair order.
+    workspace.new.clear();
+    let mut moved = 0;
     for &(i, j) in &workspace.pairs {
         let sizes = [geometry[i].outline.size(), geometry[j].outline.size()];
         let (a, b) = (&bodies[i], &bodies[j]);
-        if !set.keep(
+        match set.meet(
             (i, j),
             [&(a.centre, a.rotation), &(b.centre, b.rotation)],
             sizes,
         ) {
-            workspace.fresh.push((i, j));
+            Met::Kept => {}
+            Met::Moved => moved += 1,
+            Met::New => workspace.new.push((i, j)),
         }
     }
-    let compute = |features: &mut Features, &(i, j): &(usize, usize)| {
+    let compute = |features: &mut Features, pair: (usize, usize)| {
         contact_of(
             bodies,
             geometry,
             &poses,
-            (i, j),
+            pair,
             margin,
             feature_angle,
             features,
         )
     };
-    let contacts: Vec<_> = if workspace.fresh.len() >= PARALLEL_PAIRS {
+    set.refresh(moved, PARALLEL_PAIRS, Features::default, compute);
+    let contacts: Vec<_> = if workspace.new.len() >= PARALLEL_PAIRS {
         workspace
-            .fresh
+            .new
             .par_iter()
-            .map_init(Features::default, compute)
+            .map_init(Features::default, |features, &pair| compute(features, pair))
             .collect()
     } else {
         let features = &mut workspace.features;
         workspace
-            .fresh
+            .new
             .iter()
-            .map(|pair| compute(features, pair))
+            .map(|&pair| compute(features, pair))
             .collect()
     };
-    for (contact, features, now) in contacts.into_iter().flatten() {
-        set.update(contact, features, now);
+    for computed in contacts.into_iter().flatten() {
+        set.insert(computed);
     }
     set.end(gravity);
 }
@@ -133,7 +137,7 @@ fn contact_of(
     margin: f64,
     feature_angle: f64,
     features: &mut Features,
-) -> Option<(Contact, Vec<FeatureId>, [Pose; 2])> {
+) -> Option<Computed> {
     let (a, b) = (&bodies[i], &bodies[j]);
     let normal = parry_bridge::contact_normal(
         &geometry[i].collider,
