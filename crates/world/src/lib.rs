@@ -28,6 +28,7 @@ mod error;
 mod load_estimate;
 mod parry_bridge;
 mod rotation;
+mod sat;
 pub mod scene;
 mod settings;
 mod shape;

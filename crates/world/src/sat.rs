@@ -1,0 +1,140 @@
+//! The separating-axis test of two convex polytopes (hulls and boxes): the axis along which they
+//! are separated most, or overlap least, among the face normals of each and the cross products of
+//! an edge of each. For polytopes this is the exact contact normal, the axis GJK and EPA
+//! converge to, without their iterations and allocations (EPA, which parry builds afresh for each
+//! call, took a fifth of the profile samples of the 1000-shape pile).
+//!
+//! Edge pairs are tried only where their arcs on the Gauss map cross (Gregorius, "The
+//! Separating Axis Test between Convex Polyhedra", GDC 2013): only those pairs build a face of
+//! the Minkowski difference. Every separation is measured with the support functions of both
+//! polytopes, so an edge pair let through by round-off only costs time.
+
+use nalgebra::{UnitQuaternion, Vector3};
+
+/// A convex polytope in its own frame.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Polytope {
+    vertices: Vec<Vector3<f64>>,
+    /// Outward unit normal `n` and offset `d` of each face (`n · x = d` on it).
+    faces: Vec<(Vector3<f64>, f64)>,
+    /// Each edge's two vertices and the outward unit normals of its two faces.
+    edges: Vec<([usize; 2], [Vector3<f64>; 2])>,
+    /// The mean of the vertices: a point inside.
+    centre: Vector3<f64>,
+}
+
+impl Polytope {
+    /// A polytope from its vertices, its faces (outward unit normal and a vertex index each) and
+    /// its edges (two vertex indices and two face indices each); `None` if an index is out of
+    /// range or there are no vertices.
+    pub(crate) fn new(
+        vertices: Vec<Vector3<f64>>,
+        faces: &[(Vector3<f64>, usize)],
+        edges: &[([usize; 2], [usize; 2])],
+    ) -> Option<Self> {
+        let faces = faces
+            .iter()
+            .map(|&(n, v)| Some((n, n.dot(vertices.get(v)?))))
+            .collect::<Option<Vec<_>>>()?;
+        let edges = edges
+            .iter()
+            .map(|&(ends, [f, g])| {
+                let valid = ends.iter().all(|&v| v < vertices.len());
+                Some((ends, [faces.get(f)?.0, faces.get(g)?.0])).filter(|_| valid)
+            })
+            .collect::<Option<Vec<_>>>()?;
+        let centre = vertices.iter().sum::<Vector3<f64>>() / vertices.len() as f64;
+        (!vertices.is_empty()).then_some(Self {
+            vertices,
+            faces,
+            edges,
+            centre,
+        })
+    }
+
+    /// The largest of `direction · v` over the vertices.
+    fn support(&self, direction: &Vector3<f64>) -> f64 {
+        self.vertices
+            .iter()
+            .map(|v| v.dot(direction))
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+}
+
+/// The separation of `b` from `a` along the unit `axis` (in `a`'s frame): how far `b` lies beyond
+/// `a`'s extent along it; negative where they overlap. `b` is placed by `rotation` and
+/// `translation` in `a`'s frame.
+fn separation_along(
+    a: &Polytope,
+    b: &Polytope,
+    rotation: &UnitQuaternion<f64>,
+    translation: &Vector3<f64>,
+    axis: &Vector3<f64>,
+) -> f64 {
+    let in_b = rotation.inverse_transform_vector(&-axis);
+    -b.support(&in_b) + axis.dot(translation) - a.support(axis)
+}
+
+/// The axis (unit, in `a`'s frame, pointing out of `a`) along which `b` — placed by `rotation`
+/// and `translation` in `a`'s frame — is separated most from `a`, and that separation (negative:
+/// the least overlap). `None` as soon as some axis separates them by more than `prediction`.
+pub(crate) fn separating_axis(
+    a: &Polytope,
+    b: &Polytope,
+    rotation: &UnitQuaternion<f64>,
+    translation: &Vector3<f64>,
+    prediction: f64,
+) -> Option<(f64, Vector3<f64>)> {
+    let mut best = (f64::NEG_INFINITY, Vector3::z());
+    let mut consider = |separation: f64, axis: Vector3<f64>| {
+        if separation > best.0 {
+            best = (separation, axis);
+        }
+        separation <= prediction
+    };
+    // A's faces, then B's (whose outward normals point out of A negated).
+    for (n, d) in &a.faces {
+        let in_b = rotation.inverse_transform_vector(&-n);
+        let separation = -b.support(&in_b) + n.dot(translation) - d;
+        if !consider(separation, *n) {
+            return None;
+        }
+    }
+    for (m, e) in &b.faces {
+        let axis = -(rotation * m);
+        let separation = -a.support(&axis) + axis.dot(translation) - e;
+        if !consider(separation, axis) {
+            return None;
+        }
+    }
+    // Edge pairs building a face of the Minkowski difference.
+    for &([p, q], [m1, m2]) in &b.edges {
+        let (p, q) = (
+            rotation * b.vertices[p] + translation,
+            rotation * b.vertices[q] + translation,
+        );
+        // B's side of the difference A − B: its normals negated.
+        let (c, d) = (-(rotation * m1), -(rotation * m2));
+        let d_x_c = d.cross(&c);
+        for &([r, s], [n1, n2]) in &a.edges {
+            let b_x_a = n2.cross(&n1);
+            let (cba, dba) = (c.dot(&b_x_a), d.dot(&b_x_a));
+            let (adc, bdc) = (n1.dot(&d_x_c), n2.dot(&d_x_c));
+            if !(cba * dba < 0.0 && adc * bdc < 0.0 && cba * bdc > 0.0) {
+                continue;
+            }
+            let (r, s) = (a.vertices[r], a.vertices[s]);
+            let Some(mut axis) = (s - r).cross(&(q - p)).try_normalize(1e-12) else {
+                continue;
+            };
+            if axis.dot(&(r - a.centre)) < 0.0 {
+                axis = -axis;
+            }
+            let separation = separation_along(a, b, rotation, translation, &axis);
+            if !consider(separation, axis) {
+                return None;
+            }
+        }
+    }
+    Some(best)
+}
