@@ -402,4 +402,30 @@ mod tests {
         }
         assert!(compared > 200, "only {compared} overlapping pairs compared");
     }
+
+    /// A hull resting face down on another, turned 30° about the normal and offset, gives the
+    /// face normal whatever the size: 1 mm and 1 km cubes given as hulls, overlapping by 1% of
+    /// their size.
+    #[test]
+    fn stacked_hulls_touch_along_the_face_normal_at_any_size() {
+        for size in [1e-3, 1.0, 1e3] {
+            let corners = (0..8)
+                .map(|i: u8| {
+                    let s = |bit: u8| if i & bit == 0 { -0.5 } else { 0.5 };
+                    Point3::new(s(1), s(2), s(4)) * size
+                })
+                .collect();
+            let cube = Collider::new(&Shape::Convex { points: corners }).expect("a cube");
+            let lower = pose(&Point3::origin(), &UnitQuaternion::identity());
+            let upper = pose(
+                &(Point3::new(0.2, 0.1, 0.99) * size),
+                &UnitQuaternion::from_euler_angles(0.0, 0.0, std::f64::consts::FRAC_PI_6),
+            );
+            let normal = contact_normal(&cube, &upper, &cube, &lower, 0.0).expect("touching");
+            assert!(
+                (normal - Vector3::z()).norm() <= 1e-9,
+                "size {size}: {normal}"
+            );
+        }
+    }
 }

@@ -124,9 +124,14 @@ pub(crate) fn separating_axis(
                 continue;
             }
             let (r, s) = (a.vertices[r], a.vertices[s]);
-            let Some(mut axis) = (s - r).cross(&(q - p)).try_normalize(1e-12) else {
+            // Parallel edges (to round-off, whatever the shapes' size) give no axis.
+            let (edge_a, edge_b) = (s - r, q - p);
+            let cross = edge_a.cross(&edge_b);
+            let length = cross.norm();
+            if length <= 1e-12 * edge_a.norm() * edge_b.norm() {
                 continue;
-            };
+            }
+            let mut axis = cross / length;
             if axis.dot(&(r - a.centre)) < 0.0 {
                 axis = -axis;
             }
