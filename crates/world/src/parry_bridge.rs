@@ -280,17 +280,21 @@ pub(crate) fn convex_mass_properties(points: &[Point3<f64>]) -> Option<MassPrope
 mod tests {
     use super::*;
 
+    /// A deterministic uniform generator on [0, 1) (a 64-bit LCG's top 53 bits).
+    fn uniform_from(mut state: u64) -> impl FnMut() -> f64 {
+        move || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
     /// Random tetrahedra of sizes 1 cm to 10 m: the hull's volume is the determinant's, where
     /// parry's own hull lost about one in 400 (flat, volume ~1e-17) and wound others inwards.
     #[test]
     fn every_tetrahedron_has_its_volume_and_outward_faces() {
-        let mut seed = 12345u64;
-        let mut uniform = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut uniform = uniform_from(12345);
         for i in 0..4000 {
             let scale = [0.01, 0.1, 1.0, 10.0][i % 4];
             let p: Vec<Point3<f64>> = (0..4)
@@ -318,13 +322,8 @@ mod tests {
     /// are a face or two edges).
     #[test]
     fn polytope_normals_agree_with_gjk_and_epa() {
-        let mut seed = 2024u64;
-        let mut uniform = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut unit = uniform_from(2024);
+        let mut uniform = || unit() * 2.0 - 1.0;
         let mut compared = 0;
         for case in 0..1500 {
             let mut shape = |k: usize| -> Shape {
