@@ -183,20 +183,25 @@ struct Tableau {
     pivot_row: Vec<f64>,
 }
 
+/// Entry `(i, v)` of the starting tableau `[I | −A | −e | q]`: column `v` is `wᵥ` for `v < n`,
+/// `z_(v−n)` up to `2n`, then `z₀`, then the right-hand side.
+fn data_cell(a: &DMatrix<f64>, q: &DVector<f64>, i: usize, v: usize) -> f64 {
+    let n = q.len();
+    match v {
+        v if v < n => f64::from(u8::from(i == v)),
+        v if v < 2 * n => -a[(i, v - n)],
+        v if v == 2 * n => -1.0,
+        _ => q[i],
+    }
+}
+
 impl Tableau {
     fn new(a: &DMatrix<f64>, q: &DVector<f64>) -> Self {
         let n = q.len();
         let width = 2 * n + 2;
-        let mut cells = vec![0.0; n * width];
-        for i in 0..n {
-            let row = &mut cells[i * width..(i + 1) * width];
-            row[i] = 1.0;
-            for j in 0..n {
-                row[n + j] = -a[(i, j)];
-            }
-            row[2 * n] = -1.0;
-            row[2 * n + 1] = q[i];
-        }
+        let cells = (0..n * width)
+            .map(|k| data_cell(a, q, k / width, k % width))
+            .collect();
         let scale = a.amax().max(1.0);
         Self {
             n,
@@ -290,14 +295,7 @@ impl Tableau {
     /// accumulated round-off is gone. `false` if `B` is singular to working precision.
     fn refactor(&mut self, a: &DMatrix<f64>, q: &DVector<f64>) -> bool {
         let n = self.n;
-        let column = |i: usize, v: usize| -> f64 {
-            match v {
-                v if v < n => f64::from(u8::from(i == v)),
-                v if v < 2 * n => -a[(i, v - n)],
-                v if v == 2 * n => -1.0,
-                _ => q[i],
-            }
-        };
+        let column = |i: usize, v: usize| data_cell(a, q, i, v);
         let basis = Mat::<f64>::from_fn(n, n, |i, k| column(i, self.basis[k]));
         let data = Mat::<f64>::from_fn(n, self.width, column);
         let cells = basis.partial_piv_lu().solve(&data);
@@ -325,14 +323,7 @@ impl Tableau {
     /// Re-solves the final basis `B x = q` (columns of `[I | −A]`) with an LU factorisation.
     fn polish(&self, a: &DMatrix<f64>, q: &DVector<f64>) -> Option<DVector<f64>> {
         let n = self.n;
-        let basis = DMatrix::from_fn(n, n, |i, k| {
-            let v = self.basis[k];
-            if v < n {
-                f64::from(u8::from(i == v))
-            } else {
-                -a[(i, v - n)]
-            }
-        });
+        let basis = DMatrix::from_fn(n, n, |i, k| data_cell(a, q, i, self.basis[k]));
         let x = lu_solve(basis, q)?;
         let mut z = DVector::zeros(n);
         for (k, &v) in self.basis.iter().enumerate() {

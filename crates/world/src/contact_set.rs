@@ -7,9 +7,8 @@
 //! a pass, [`meet`](ContactSet::meet)s each overlapping pair (keeping the contact of one that
 //! has not moved), [`refresh`](ContactSet::refresh)es the known pairs that moved in place, on
 //! every core, [`insert`](ContactSet::insert)s new ones, and [`end`](ContactSet::end)s the pass,
-//! which is where
-//! pairs no longer touching are dropped; rows are built in set order, each pair recording its
-//! blocks; [`warm_start`](ContactSet::warm_start) writes into every row the impulse of the row
+//! which is where pairs no longer touching are dropped; rows are built in set order, each pair
+//! recording its blocks; [`warm_start`](ContactSet::warm_start) writes into every row the impulse of the row
 //! with the same key last step — the key is the feature id of the support vertex the row acts at
 //! (or the whole contact) and the row's rank there, so a row is matched exactly or starts from
 //! zero, never from a neighbour's impulse — and a pair with nothing stored starts its normal rows

@@ -67,13 +67,7 @@ impl Collider {
         };
         let polytope = match shape.as_cuboid() {
             Some(cuboid) => {
-                let h = cuboid.half_extents;
-                let corners: Vec<Vector> = (0..8)
-                    .map(|i: u8| {
-                        let s = |bit: u8| if i & bit == 0 { -1.0 } else { 1.0 };
-                        Vector::new(s(1) * h.x, s(2) * h.y, s(4) * h.z)
-                    })
-                    .collect();
+                let corners: Vec<Vector> = corners(cuboid).iter().map(to_glam).collect();
                 ConvexPolyhedron::from_convex_hull(&corners).and_then(|p| polytope(&p))
             }
             None => shape.as_convex_polyhedron().and_then(polytope),
@@ -95,33 +89,36 @@ impl Collider {
     /// Vertices of a polyhedral shape's hull in its frame; `None` for a curved shape.
     pub(crate) fn hull_vertices(&self) -> Option<Vec<Vector3<f64>>> {
         if let Some(cuboid) = self.shape.as_cuboid() {
-            let h = from_glam(cuboid.half_extents);
-            let corners = (0..8).map(|i: u8| {
-                let s = |bit: u8| if i & bit == 0 { -1.0 } else { 1.0 };
-                Vector3::new(s(1) * h.x, s(2) * h.y, s(4) * h.z)
-            });
-            return Some(corners.collect());
+            return Some(corners(cuboid));
         }
         let hull = self.shape.as_convex_polyhedron()?;
         Some(hull.points().iter().map(|p| from_glam(*p)).collect())
     }
 }
 
+/// A box's eight corners in its frame.
+fn corners(cuboid: &Cuboid) -> Vec<Vector3<f64>> {
+    let h = from_glam(cuboid.half_extents);
+    (0..8)
+        .map(|i: u8| {
+            let s = |bit: u8| if i & bit == 0 { -1.0 } else { 1.0 };
+            Vector3::new(s(1) * h.x, s(2) * h.y, s(4) * h.z)
+        })
+        .collect()
+}
+
 /// A parry polyhedron's vertices, faces and edges as a [`Polytope`].
 fn polytope(hull: &ConvexPolyhedron) -> Option<Polytope> {
     let vertices = hull.points().iter().map(|p| from_glam(*p)).collect();
     let adjacent = hull.vertices_adj_to_face();
-    let faces: Vec<_> = hull
+    let faces = hull
         .faces()
         .iter()
         .map(|f| {
-            let first = adjacent.get(f.first_vertex_or_edge as usize).copied();
-            (
-                from_glam(f.normal),
-                first.map_or(usize::MAX, |v| v as usize),
-            )
+            let first = adjacent.get(f.first_vertex_or_edge as usize)?;
+            Some((from_glam(f.normal), *first as usize))
         })
-        .collect();
+        .collect::<Option<Vec<_>>>()?;
     let edges: Vec<_> = hull
         .edges()
         .iter()

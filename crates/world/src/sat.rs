@@ -32,6 +32,9 @@ impl Polytope {
         faces: &[(Vector3<f64>, usize)],
         edges: &[([usize; 2], [usize; 2])],
     ) -> Option<Self> {
+        if vertices.is_empty() {
+            return None;
+        }
         let faces = faces
             .iter()
             .map(|&(n, v)| Some((n, n.dot(vertices.get(v)?))))
@@ -39,12 +42,12 @@ impl Polytope {
         let edges = edges
             .iter()
             .map(|&(ends, [f, g])| {
-                let valid = ends.iter().all(|&v| v < vertices.len());
-                Some((ends, [faces.get(f)?.0, faces.get(g)?.0])).filter(|_| valid)
+                ends.iter().all(|&v| v < vertices.len()).then_some(())?;
+                Some((ends, [faces.get(f)?.0, faces.get(g)?.0]))
             })
             .collect::<Option<Vec<_>>>()?;
         let centre = vertices.iter().sum::<Vector3<f64>>() / vertices.len() as f64;
-        (!vertices.is_empty()).then_some(Self {
+        Some(Self {
             vertices,
             faces,
             edges,
