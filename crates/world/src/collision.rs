@@ -4,13 +4,13 @@
 //! [`ContactSet::meet`]).
 
 use nalgebra::Vector3;
-use rayon::prelude::*;
 use tatami_contact::{Contact, Material};
 use tatami_lcp::BodyId;
 
 use crate::body::Body;
 use crate::broad_phase::SweepAndPrune;
 use crate::contact_set::{Computed, ContactSet, Met};
+use crate::parallel;
 use crate::parry_bridge::{self, Collider};
 use crate::support::{FeaturePoint, Outline, support};
 
@@ -108,11 +108,11 @@ pub(crate) fn detect(
     };
     set.refresh(moved, PARALLEL_PAIRS, Features::default, compute);
     let contacts: Vec<_> = if workspace.new.len() >= PARALLEL_PAIRS {
-        workspace
-            .new
-            .par_iter()
-            .map_init(Features::default, |features, &pair| compute(features, pair))
-            .collect()
+        let mut slots: Vec<_> = workspace.new.iter().map(|&pair| (pair, None)).collect();
+        parallel::for_each(&mut slots, Features::default, |features, (pair, out)| {
+            *out = compute(features, *pair)
+        });
+        slots.into_iter().map(|(_, computed)| computed).collect()
     } else {
         let features = &mut workspace.features;
         workspace

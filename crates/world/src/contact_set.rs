@@ -22,7 +22,6 @@
 use std::collections::HashMap;
 
 use foldhash::fast::FixedState;
-use rayon::prelude::*;
 use std::ops::Range;
 
 use nalgebra::{Point3, UnitQuaternion, Vector3};
@@ -31,6 +30,7 @@ use tatami_lcp::pgs::Support;
 use tatami_lcp::{Problem, Projection};
 
 use crate::load_estimate::LoadEstimate;
+use crate::parallel;
 use crate::support::FeatureId;
 
 /// Largest motion of either body (m; a turn counts as rad × the body's size) since a pair's
@@ -168,7 +168,11 @@ impl ContactSet {
             }
         };
         if moved >= parallel_from {
-            self.entries.par_iter_mut().for_each_init(scratch, refresh);
+            let mut moved_entries: Vec<&mut Entry> = Vec::with_capacity(moved);
+            moved_entries.extend(self.entries.iter_mut().filter(|entry| entry.state.moved));
+            parallel::for_each(&mut moved_entries, scratch, |scratch, entry| {
+                refresh(scratch, entry)
+            });
         } else {
             let mut scratch = scratch();
             self.entries

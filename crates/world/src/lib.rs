@@ -26,6 +26,7 @@ mod control;
 pub mod dropped;
 mod error;
 mod load_estimate;
+mod parallel;
 mod parry_bridge;
 mod rotation;
 mod sat;

@@ -1,0 +1,71 @@
+//! Work on every core with the calling thread taking part: each thread claims small pieces in
+//! turn until none are left.
+//!
+//! Why not a plain `par_iter`: called from outside the thread pool (a program's own thread, as a
+//! world step is), rayon hands the whole loop to its workers and the caller sleeps until they are
+//! done, so the loop waits first for a sleeping worker to wake, then the caller waits to be woken.
+//! On a virtual machine of two cores a worker asleep for the length of a solve (10 ms) took
+//! 0.2–1 ms to start, and after 50 ms 1.5–2.4 ms: a 4 ms loop handed over then took as long as
+//! run on one thread. Here the caller starts at once and claims pieces while the helpers wake;
+//! a helper that wakes late finds little or nothing left. Each item is a pure function of its
+//! own data, so which thread does it changes nothing in the result.
+
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Mutex, PoisonError};
+
+/// Most items one claim takes: small enough that the threads finish together, large enough
+/// that claiming (one atomic add and one lock nobody else holds) costs nothing beside them.
+const ITEMS_PER_CLAIM: usize = 8;
+
+/// Calls `work(scratch, item)` once on every item, on the calling thread and the pool's
+/// threads, each with its own `scratch` from `scratch()`.
+pub(crate) fn for_each<T, S>(
+    items: &mut [T],
+    scratch: fn() -> S,
+    work: impl Fn(&mut S, &mut T) + Sync,
+) where
+    T: Send,
+{
+    let claims: Vec<Mutex<&mut [T]>> = items.chunks_mut(ITEMS_PER_CLAIM).map(Mutex::new).collect();
+    let next = AtomicUsize::new(0);
+    let take_part = || {
+        let mut own = scratch();
+        while let Some(claim) = claims.get(next.fetch_add(1, Ordering::Relaxed)) {
+            let mut piece = claim.lock().unwrap_or_else(PoisonError::into_inner);
+            for item in piece.iter_mut() {
+                work(&mut own, item);
+            }
+        }
+    };
+    rayon::in_place_scope(|scope| {
+        for _ in 1..rayon::current_num_threads() {
+            scope.spawn(|_| take_part());
+        }
+        take_part();
+    });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_item_is_done_once_with_a_scratch_of_its_thread() {
+        for len in [0, 1, 7, 8, 9, 100, 1001] {
+            let mut items: Vec<(usize, u32)> = (0..len).map(|i| (i, 0)).collect();
+            for_each(&mut items, Vec::<usize>::new, |seen, (index, visits)| {
+                // The scratch is the thread's own: it only grows while this thread works.
+                seen.push(*index);
+                assert!(seen.windows(2).all(|w| w[0] < w[1]), "claims go forward");
+                *visits += 1;
+            });
+            assert!(
+                items
+                    .iter()
+                    .enumerate()
+                    .all(|(i, &(index, visits))| index == i && visits == 1),
+                "{len} items"
+            );
+        }
+    }
+}
