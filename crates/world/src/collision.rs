@@ -33,8 +33,10 @@ struct Features {
     b: Vec<FeaturePoint>,
 }
 
-/// Fewest pairs to compute worth handing to the thread pool: below this, its start-up costs more
-/// than the pairs (a few µs against about 1 µs a box pair).
+/// Fewest pairs to compute worth sharing with the thread pool ([`parallel::for_each`]): below
+/// this the pairs take less than a helper thread needs to start (a few µs while the pool is
+/// busy, far more once it sleeps; the loop ends only when every helper has started), at about
+/// 1 µs a box pair.
 const PARALLEL_PAIRS: usize = 32;
 
 /// A body's collision data, built once when the body is added.

@@ -155,10 +155,8 @@ impl ContactSet {
     ) where
         F: Fn(&mut S, (usize, usize)) -> Option<Computed> + Sync,
     {
-        let refresh = |scratch: &mut S, entry: &mut Entry| {
-            if !std::mem::take(&mut entry.state.moved) {
-                return;
-            }
+        let refresh = |scratch: &mut S, entry: &mut &mut Entry| {
+            entry.state.moved = false;
             let pair = (entry.contact.body_a.0, entry.contact.body_b.0);
             if let Some((contact, features, poses)) = compute(scratch, pair) {
                 entry.contact = contact;
@@ -167,17 +165,15 @@ impl ContactSet {
                 entry.state.seen = true;
             }
         };
+        let mut moved_entries: Vec<&mut Entry> = Vec::with_capacity(moved);
+        moved_entries.extend(self.entries.iter_mut().filter(|entry| entry.state.moved));
         if moved >= parallel_from {
-            let mut moved_entries: Vec<&mut Entry> = Vec::with_capacity(moved);
-            moved_entries.extend(self.entries.iter_mut().filter(|entry| entry.state.moved));
-            parallel::for_each(&mut moved_entries, scratch, |scratch, entry| {
-                refresh(scratch, entry)
-            });
+            parallel::for_each(&mut moved_entries, scratch, refresh);
         } else {
             let mut scratch = scratch();
-            self.entries
-                .iter_mut()
-                .for_each(|entry| refresh(&mut scratch, entry));
+            for entry in &mut moved_entries {
+                refresh(&mut scratch, entry);
+            }
         }
     }
 
