@@ -17,10 +17,19 @@ pub(crate) struct Polytope {
     vertices: Vec<Vector3<f64>>,
     /// Outward unit normal `n` and offset `d` of each face (`n · x = d` on it).
     faces: Vec<(Vector3<f64>, f64)>,
-    /// Each edge's two vertices and the outward unit normals of its two faces.
-    edges: Vec<([usize; 2], [Vector3<f64>; 2])>,
+    /// Each edge's two vertices and the outward unit normals `n₁`, `n₂` of its two faces, with
+    /// `n₂ × n₁`, the normal of the edge's arc on the Gauss map.
+    edges: Vec<Edge>,
     /// The mean of the vertices: a point inside.
     centre: Vector3<f64>,
+}
+
+/// An edge of a [`Polytope`].
+#[derive(Debug, Clone, PartialEq)]
+struct Edge {
+    ends: [usize; 2],
+    normals: [Vector3<f64>; 2],
+    arc: Vector3<f64>,
 }
 
 impl Polytope {
@@ -43,7 +52,12 @@ impl Polytope {
             .iter()
             .map(|&(ends, [f, g])| {
                 ends.iter().all(|&v| v < vertices.len()).then_some(())?;
-                Some((ends, [faces.get(f)?.0, faces.get(g)?.0]))
+                let normals = [faces.get(f)?.0, faces.get(g)?.0];
+                Some(Edge {
+                    ends,
+                    normals,
+                    arc: normals[1].cross(&normals[0]),
+                })
             })
             .collect::<Option<Vec<_>>>()?;
         let centre = vertices.iter().sum::<Vector3<f64>>() / vertices.len() as f64;
@@ -111,7 +125,8 @@ pub(crate) fn separating_axis(
         }
     }
     // Edge pairs building a face of the Minkowski difference.
-    for &([p, q], [m1, m2]) in &b.edges {
+    for b_edge in &b.edges {
+        let ([p, q], [m1, m2]) = (b_edge.ends, b_edge.normals);
         let (p, q) = (
             rotation * b.vertices[p] + translation,
             rotation * b.vertices[q] + translation,
@@ -119,11 +134,17 @@ pub(crate) fn separating_axis(
         // B's side of the difference A − B: its normals negated.
         let (c, d) = (-(rotation * m1), -(rotation * m2));
         let d_x_c = d.cross(&c);
-        for &([r, s], [n1, n2]) in &a.edges {
-            let b_x_a = n2.cross(&n1);
-            let (cba, dba) = (c.dot(&b_x_a), d.dot(&b_x_a));
+        for a_edge in &a.edges {
+            // The arcs cross where B's ends C, D lie on either side of A's arc's plane, A's ends
+            // N₁, N₂ on either side of B's, and the arcs on one hemisphere. The first test
+            // alone rejects most pairs, so it is made before the others' products.
+            let (cba, dba) = (c.dot(&a_edge.arc), d.dot(&a_edge.arc));
+            if cba * dba >= 0.0 {
+                continue;
+            }
+            let ([r, s], [n1, n2]) = (a_edge.ends, a_edge.normals);
             let (adc, bdc) = (n1.dot(&d_x_c), n2.dot(&d_x_c));
-            if !(cba * dba < 0.0 && adc * bdc < 0.0 && cba * bdc > 0.0) {
+            if !(adc * bdc < 0.0 && cba * bdc > 0.0) {
                 continue;
             }
             let (r, s) = (a.vertices[r], a.vertices[s]);
