@@ -209,7 +209,7 @@ pub(crate) fn build(
     let (normal_speed, slip) = point_motion(contact, &problem.bodies, &p);
     let twist_rate = twist_rate(contact, &problem.bodies);
     let r_bar = match settings.twist_radius {
-        TwistRadius::Exact => contact.support.mean_distance(&centre),
+        TwistRadius::Exact => contact.support.centroid_mean_distance(),
         TwistRadius::Grid { spacing } => contact.support.mean_distance_grid(&centre, spacing),
     };
     let material = &contact.material;

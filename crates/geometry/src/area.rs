@@ -106,6 +106,28 @@ impl ConvexPolygon {
         }
     }
 
+    /// [`mean_distance`](Self::mean_distance) from the centroid — the face model's exact `r̄` —
+    /// computed when first asked and kept: a contact whose support polygon is unchanged from
+    /// one step to the next pays for it once.
+    ///
+    /// ```
+    /// use nalgebra::Point2;
+    /// use tatami_geometry::ConvexPolygon;
+    /// let square = ConvexPolygon::from_points(&[
+    ///     Point2::new(-1.0, -1.0), Point2::new(1.0, -1.0), Point2::new(1.0, 1.0), Point2::new(-1.0, 1.0),
+    /// ])?;
+    /// // (√2 + asinh 1) / 3 for a square of half-side 1.
+    /// let r_bar = (2f64.sqrt() + 1f64.asinh()) / 3.0;
+    /// assert!((square.centroid_mean_distance() - r_bar).abs() < 1e-12);
+    /// assert_eq!(square.centroid_mean_distance(), square.mean_distance(&square.centroid()));
+    /// # Ok::<(), tatami_geometry::GeometryError>(())
+    /// ```
+    pub fn centroid_mean_distance(&self) -> f64 {
+        *self
+            .centroid_mean_distance
+            .get_or_init(|| self.mean_distance(&self.centroid()))
+    }
+
     /// The paper's discretised mean distance (eq. 9): the average of `|x − c|` over the centres
     /// of a square grid of the given `spacing` that fall inside the polygon. Kept to reproduce
     /// the paper and to show convergence to [`mean_distance`](Self::mean_distance).

@@ -11,6 +11,8 @@
 //! resting on a face), coincident input a point (a corner). Every query of this crate handles all
 //! three kinds.
 
+use std::sync::OnceLock;
+
 use nalgebra::Point2;
 
 use crate::GeometryError;
@@ -44,13 +46,27 @@ pub enum PolygonKind {
 
 /// A convex polygon in a contact plane, counter-clockwise, without repeated or collinear vertices.
 ///
-/// Area, centroid and the length tolerance are computed once at construction; queries only read.
-#[derive(Debug, Clone, PartialEq)]
+/// Area, centroid and the length tolerance are computed once at construction; queries only read,
+/// but for the mean distance from the centroid, computed once when first asked (see
+/// [`ConvexPolygon::centroid_mean_distance`]).
+#[derive(Debug, Clone)]
 pub struct ConvexPolygon {
     vertices: Vec<Point2<f64>>,
     area: f64,
     centroid: Point2<f64>,
     tolerance: f64,
+    pub(crate) centroid_mean_distance: OnceLock<f64>,
+}
+
+/// Polygons are equal when their vertices, area, centroid and tolerance are: whether the mean
+/// distance has been asked for yet does not matter.
+impl PartialEq for ConvexPolygon {
+    fn eq(&self, other: &Self) -> bool {
+        self.vertices == other.vertices
+            && self.area == other.area
+            && self.centroid == other.centroid
+            && self.tolerance == other.tolerance
+    }
 }
 
 impl ConvexPolygon {
@@ -106,6 +122,7 @@ impl ConvexPolygon {
             area,
             centroid,
             tolerance,
+            centroid_mean_distance: OnceLock::new(),
         })
     }
 
