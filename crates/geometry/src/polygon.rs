@@ -14,6 +14,7 @@
 use std::sync::OnceLock;
 
 use nalgebra::Point2;
+use smallvec::SmallVec;
 
 use crate::GeometryError;
 use crate::area::{self, signed_area};
@@ -51,12 +52,20 @@ pub enum PolygonKind {
 /// [`ConvexPolygon::centroid_mean_distance`]).
 #[derive(Debug, Clone)]
 pub struct ConvexPolygon {
-    vertices: Vec<Point2<f64>>,
+    vertices: Vertices,
     area: f64,
     centroid: Point2<f64>,
     tolerance: f64,
     pub(crate) centroid_mean_distance: OnceLock<f64>,
 }
+
+/// Vertices of a polygon, inline up to [`INLINE_VERTICES`].
+type Vertices = SmallVec<[Point2<f64>; INLINE_VERTICES]>;
+
+/// Vertices a polygon holds without a heap allocation: a box's contact has at most 8 (two
+/// squares' overlap), and a contact's polygon is built, cloned into its constraint and read by
+/// every solver sweep, so inline it costs no allocation and no pointer chase.
+const INLINE_VERTICES: usize = 8;
 
 /// Polygons are equal when their vertices, area, centroid and tolerance are: whether the mean
 /// distance has been asked for yet does not matter.
@@ -176,7 +185,7 @@ fn length_tolerance(points: &[Point2<f64>]) -> f64 {
 }
 
 /// The exact hull, then [`simplify`]: every input point ends within `tolerance` of the result.
-fn hull(points: &[Point2<f64>], tolerance: f64) -> Vec<Point2<f64>> {
+fn hull(points: &[Point2<f64>], tolerance: f64) -> Vertices {
     simplify(monotone_chain(points), tolerance)
 }
 
@@ -185,7 +194,7 @@ fn hull(points: &[Point2<f64>], tolerance: f64) -> Vec<Point2<f64>> {
 const SORTED_ON_STACK: usize = 16;
 
 /// Andrew's monotone chain keeping strict left turns only, as the floating-point sign says.
-fn monotone_chain(points: &[Point2<f64>]) -> Vec<Point2<f64>> {
+fn monotone_chain(points: &[Point2<f64>]) -> Vertices {
     let mut on_stack = [Point2::origin(); SORTED_ON_STACK];
     let mut on_heap = Vec::new();
     let sorted: &mut [Point2<f64>] = if points.len() <= SORTED_ON_STACK {
@@ -207,8 +216,8 @@ fn monotone_chain(points: &[Point2<f64>]) -> Vec<Point2<f64>> {
     }
     let sorted = &sorted[..unique];
 
-    let mut chain: Vec<Point2<f64>> = Vec::with_capacity(sorted.len() + 1);
-    let push = |chain: &mut Vec<Point2<f64>>, floor: usize, p: Point2<f64>| {
+    let mut chain = Vertices::with_capacity(sorted.len() + 1);
+    let push = |chain: &mut Vertices, floor: usize, p: Point2<f64>| {
         while chain.len() >= floor + 2
             && signed_area(&chain[chain.len() - 2], &chain[chain.len() - 1], &p) <= 0.0
         {
@@ -238,7 +247,7 @@ fn monotone_chain(points: &[Point2<f64>]) -> Vec<Point2<f64>> {
 ///
 /// Decision record: tolerant turn tests inside the monotone chain were rejected because a point
 /// dropped against one chord can end several tolerances outside the next.
-fn simplify(ring: Vec<Point2<f64>>, tolerance: f64) -> Vec<Point2<f64>> {
+fn simplify(ring: Vertices, tolerance: f64) -> Vertices {
     let n = ring.len();
     if n <= 1 {
         return ring;

@@ -31,7 +31,7 @@ use tatami_lcp::{Problem, Projection};
 
 use crate::load_estimate::LoadEstimate;
 use crate::parallel;
-use crate::support::FeatureId;
+use crate::support::{FeatureId, FeatureIds};
 
 /// Largest motion of either body (m; a turn counts as rad × the body's size) since a pair's
 /// contact was computed for it to be kept: far below any depth that matters (the slop is 2 mm;
@@ -46,7 +46,7 @@ pub(crate) type Pose = (Point3<f64>, UnitQuaternion<f64>);
 
 /// A pair's contact as collision computes it: the contact, a feature id per support vertex, and
 /// the poses of the two bodies it was computed at.
-pub(crate) type Computed = (Contact, Vec<FeatureId>, [Pose; 2]);
+pub(crate) type Computed = (Contact, FeatureIds, [Pose; 2]);
 
 /// What [`ContactSet::meet`] found of a pair.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -66,7 +66,7 @@ type RowKey = (Option<FeatureId>, usize);
 /// What the set keeps of one pair besides its contact.
 #[derive(Debug, Clone)]
 struct PairState {
-    features: Vec<FeatureId>,
+    features: FeatureIds,
     poses: [Pose; 2],
     /// Blocks of this step's problem.
     blocks: Range<usize>,

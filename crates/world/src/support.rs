@@ -16,6 +16,7 @@
 //! that flickered with it would throw the corner's warm start away every other step.
 
 use nalgebra::{Matrix3, Point2, Point3, UnitQuaternion, Vector3};
+use smallvec::SmallVec;
 use tatami_contact::ContactFrame;
 use tatami_geometry::nearest::closest_point_on_segment;
 use tatami_geometry::{ConvexPolygon, PolygonKind, signed_area};
@@ -25,6 +26,11 @@ use tatami_geometry::{ConvexPolygon, PolygonKind, signed_area};
 /// stacked 2 m boxes keep their names through 2.8 cm of offset, while the crossings of a
 /// twisted box (30 cm from any corner for 2 m boxes at 45°) keep theirs.
 const SAME_POINT: f64 = 0.01;
+
+/// Points of a touching feature, an outline or an overlap, inline up to 8: a box's feature has
+/// at most 4 points and two boxes' overlap at most 8, so a box pair's support polygon is built
+/// without a heap allocation (a cylinder cap's 64 spill to the heap).
+type Points<T> = SmallVec<[T; 8]>;
 
 /// A point of a body's touching feature and which point of the body it is: a hull vertex's
 /// index, a cylinder cap's rim point, … — the same from step to step while the body touches
@@ -50,6 +56,9 @@ pub(crate) enum FeatureId {
     /// An edge of A's outline crossing an edge of B's.
     Crossing(u32, u32),
 }
+
+/// The feature ids of a support polygon's vertices, inline up to a box contact's 8.
+pub(crate) type FeatureIds = SmallVec<[FeatureId; 8]>;
 
 /// What of a body's surface can touch: hull vertices, or a ball.
 #[derive(Debug, Clone, PartialEq)]
@@ -216,7 +225,7 @@ pub(crate) struct Support {
     pub frame: ContactFrame,
     pub polygon: ConvexPolygon,
     pub depths: Vec<f64>,
-    pub features: Vec<FeatureId>,
+    pub features: FeatureIds,
 }
 
 /// The support polygon of A's `feature_a` resting on B's `feature_b`, with `normal` (unit) from B
@@ -287,13 +296,13 @@ fn identify(p: &Point2<f64>, a: &Surface, b: &Surface, tolerance: f64) -> Featur
 /// its points; exact for a face).
 struct Surface {
     outline: ConvexPolygon,
-    ids: Vec<u32>,
+    ids: Points<u32>,
     coefficients: Vector3<f64>,
 }
 
 impl Surface {
     fn fit(frame: &ContactFrame, feature: &[FeaturePoint]) -> Option<Self> {
-        let plane: Vec<Point2<f64>> = feature.iter().map(|f| frame.to_plane(&f.point)).collect();
+        let plane: Points<Point2<f64>> = feature.iter().map(|f| frame.to_plane(&f.point)).collect();
         let outline = ConvexPolygon::from_points(&plane).ok()?;
         // The hull's vertices are copies of its input points.
         let ids = outline
@@ -360,10 +369,10 @@ impl Surface {
 }
 
 /// The overlap of two convex outlines (points, segments or polygons), as unordered points.
-fn overlap(a: &ConvexPolygon, b: &ConvexPolygon) -> Vec<Point2<f64>> {
+fn overlap(a: &ConvexPolygon, b: &ConvexPolygon) -> Points<Point2<f64>> {
     match (a.kind(), b.kind()) {
-        (PolygonKind::Point, _) => a.vertices().to_vec(),
-        (_, PolygonKind::Point) => b.vertices().to_vec(),
+        (PolygonKind::Point, _) => Points::from_slice(a.vertices()),
+        (_, PolygonKind::Point) => Points::from_slice(b.vertices()),
         (PolygonKind::Polygon, PolygonKind::Polygon) => clip_polygon(a.vertices(), b.vertices()),
         (PolygonKind::Segment, PolygonKind::Polygon) => clip_segment(a.vertices(), b.vertices()),
         (PolygonKind::Polygon, PolygonKind::Segment) => clip_segment(b.vertices(), a.vertices()),
@@ -372,9 +381,9 @@ fn overlap(a: &ConvexPolygon, b: &ConvexPolygon) -> Vec<Point2<f64>> {
 }
 
 /// Sutherland–Hodgman: `subject` clipped by each edge of the counter-clockwise `clip`.
-fn clip_polygon(subject: &[Point2<f64>], clip: &[Point2<f64>]) -> Vec<Point2<f64>> {
-    let mut current = subject.to_vec();
-    let mut next = Vec::with_capacity(subject.len() + clip.len());
+fn clip_polygon(subject: &[Point2<f64>], clip: &[Point2<f64>]) -> Points<Point2<f64>> {
+    let mut current = Points::from_slice(subject);
+    let mut next = Points::with_capacity(subject.len() + clip.len());
     for (i, c0) in clip.iter().enumerate() {
         let c1 = &clip[(i + 1) % clip.len()];
         next.clear();
@@ -397,14 +406,14 @@ fn clip_polygon(subject: &[Point2<f64>], clip: &[Point2<f64>]) -> Vec<Point2<f64
 }
 
 /// The part of segment `s` inside the counter-clockwise polygon `clip` (Cyrus–Beck).
-fn clip_segment(s: &[Point2<f64>], clip: &[Point2<f64>]) -> Vec<Point2<f64>> {
+fn clip_segment(s: &[Point2<f64>], clip: &[Point2<f64>]) -> Points<Point2<f64>> {
     let (p, q) = (s[0], s[1]);
     let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
     for (i, c0) in clip.iter().enumerate() {
         let c1 = &clip[(i + 1) % clip.len()];
         let (sp, sq) = (signed_area(c0, c1, &p), signed_area(c0, c1, &q));
         if sp < 0.0 && sq < 0.0 {
-            return Vec::new();
+            return Points::new();
         }
         if sp < 0.0 {
             t0 = t0.max(sp / (sp - sq));
@@ -413,13 +422,13 @@ fn clip_segment(s: &[Point2<f64>], clip: &[Point2<f64>]) -> Vec<Point2<f64>> {
         }
     }
     if t0 > t1 {
-        return Vec::new();
+        return Points::new();
     }
-    vec![p + (q - p) * t0, p + (q - p) * t1]
+    Points::from_slice(&[p + (q - p) * t0, p + (q - p) * t1])
 }
 
 /// Two segments: their common part when (nearly) parallel, else their crossing point.
-fn segment_overlap(a: &ConvexPolygon, b: &ConvexPolygon) -> Vec<Point2<f64>> {
+fn segment_overlap(a: &ConvexPolygon, b: &ConvexPolygon) -> Points<Point2<f64>> {
     let (a0, a1) = (a.vertices()[0], a.vertices()[1]);
     let (b0, b1) = (b.vertices()[0], b.vertices()[1]);
     let (da, db) = (a1 - a0, b1 - b0);
@@ -433,16 +442,16 @@ fn segment_overlap(a: &ConvexPolygon, b: &ConvexPolygon) -> Vec<Point2<f64>> {
         }
         let (lo, hi) = (u0.max(0.0), u1.min(1.0));
         if lo > hi {
-            return Vec::new();
+            return Points::new();
         }
-        return vec![a0 + da * lo, a0 + da * hi];
+        return Points::from_slice(&[a0 + da * lo, a0 + da * hi]);
     }
     let t = (b0 - a0).perp(&db) / cross;
     let u = (b0 - a0).perp(&da) / cross;
     if (0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&u) {
-        vec![a0 + da * t]
+        Points::from_slice(&[a0 + da * t])
     } else {
-        Vec::new()
+        Points::new()
     }
 }
 
@@ -550,7 +559,7 @@ mod tests {
         let s = support(&small, &square(2.0, 0.0, 0.0), &Vector3::z()).unwrap();
         let mut ids = s.features.clone();
         ids.sort();
-        assert_eq!(ids, (0..4).map(FeatureId::A).collect::<Vec<_>>());
+        assert_eq!(ids[..], (0..4).map(FeatureId::A).collect::<Vec<_>>());
         // Twisted equal squares: eight crossings, each a different pair of edges.
         let a = square(1.0, std::f64::consts::FRAC_PI_4, 0.0);
         let b = square(1.0, 0.0, 0.0);
