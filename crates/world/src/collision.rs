@@ -23,6 +23,8 @@ pub(crate) struct CollisionWorkspace {
     pairs: Vec<(usize, usize)>,
     /// Pairs the contact set does not hold yet.
     new: Vec<(usize, usize)>,
+    /// Contacts the last pass computed (moved or new pairs).
+    last_computed: usize,
     features: Features,
 }
 
@@ -38,6 +40,12 @@ struct Features {
 /// busy, far more once it sleeps; the loop ends only when every helper has started), at about
 /// 1 µs a box pair.
 const PARALLEL_PAIRS: usize = 32;
+
+/// Fewest pairs computed in the last pass for the next to wake the pool's helpers before its
+/// broad phase ([`parallel::Warm`]): on the 1000-cube pile (2,000 and more a step) it cut the
+/// collision stage by about 5%; on the 210-cube pyramid, a few dozen a step, it cost more (the
+/// wake and a spinning helper) than the loop gained.
+const WARM_PAIRS: usize = 256;
 
 /// A body's collision data, built once when the body is added.
 #[derive(Debug, Clone)]
@@ -57,6 +65,9 @@ pub(crate) fn detect(
     workspace: &mut CollisionWorkspace,
     set: &mut ContactSet,
 ) {
+    // A pass like the last one shares many contacts with the pool: wake the helpers now, so
+    // they are up by the time the broad phase and the meeting pass are done.
+    let warm = (workspace.last_computed >= WARM_PAIRS).then(parallel::Warm::start);
     set.begin(margin, feature_angle);
     let poses: Vec<_> = bodies
         .iter()
@@ -108,6 +119,8 @@ pub(crate) fn detect(
             features,
         )
     };
+    workspace.last_computed = moved + workspace.new.len();
+    drop(warm);
     set.refresh(moved, PARALLEL_PAIRS, Features::default, compute);
     let contacts: Vec<_> = if workspace.new.len() >= PARALLEL_PAIRS {
         let mut slots: Vec<_> = workspace.new.iter().map(|&pair| (pair, None)).collect();
