@@ -160,14 +160,15 @@ pub const WHOLE_BLOCK_ROWS: usize = 6;
 /// Whether and how a block is stepped whole in the current solve.
 #[derive(Debug, Clone, Copy)]
 enum Whole {
-    /// Row by row: the block does not ask for it, its `K` is singular, or a whole step left its
-    /// set once in this solve (a block at a bound — sliding, tipping, parting — stays there for
-    /// a while, and would pay for both updates every sweep).
+    /// Row by row: the block does not ask for it, or its `K` is singular.
     No,
     /// Not tried yet in this solve; `K` is factored when it is.
     Untried,
     /// `K`'s Cholesky factor is in [`PgsWorkspace::factors`].
     Ready,
+    /// Factored, but a whole step left its set in this solve: row by row for the rest of it
+    /// (a [`resolve_in_place`] of the same problem starts it whole again).
+    Left,
 }
 
 /// Buffers reused across solves so sweeps allocate nothing.
@@ -202,8 +203,85 @@ pub fn solve_in_place<P: Projection>(
     workspace: &mut PgsWorkspace,
     params: &PgsParams,
 ) -> Result<PgsInfo, LcpError> {
+    run(problem, workspace, params, Prepared::No)
+}
+
+/// [`solve_in_place`] for a problem last solved with `workspace` whose rows' Jacobians, blocks
+/// and bodies' masses have not changed since — only targets, impulses and velocities may have
+/// (a split-impulse position pass on the velocity problem, as `tatami-world` runs it): the
+/// rows' responses `M⁻¹Jᵀ` and the blocks' factors of the last solve are reused, which gives
+/// the same answer to the bit as computing them again. A workspace that did not solve a
+/// problem of this shape gets them computed.
+///
+/// ```
+/// use tatami_lcp::pgs::{self, PgsParams, PgsWorkspace};
+/// use tatami_lcp::{BodyId, Block, BoundsProjection, Jacobian, Problem, Row, RowBound, SolverBody};
+/// use nalgebra::{Matrix3, Vector3};
+///
+/// // A 1 kg body pressed on the ground; then the same row with another target.
+/// let body = SolverBody {
+///     inv_mass: 1.0,
+///     inv_inertia_world: Matrix3::identity(),
+///     linear_velocity: Vector3::new(0.0, 0.0, -1.0),
+///     angular_velocity: Vector3::zeros(),
+/// };
+/// let jacobian = Jacobian {
+///     linear_a: Vector3::z(),
+///     angular_a: Vector3::zeros(),
+///     linear_b: Vector3::zeros(),
+///     angular_b: Vector3::zeros(),
+/// };
+/// let mut problem = Problem {
+///     bodies: vec![body, SolverBody::fixed()],
+///     rows: vec![Row { jacobian, target: 0.0, impulse: 0.0 }],
+///     blocks: vec![Block {
+///         body_a: BodyId(0),
+///         body_b: BodyId(1),
+///         rows: 0..1,
+///         projection: BoundsProjection(vec![RowBound::NonNegative]),
+///     }],
+/// };
+/// let mut workspace = PgsWorkspace::default();
+/// pgs::solve_in_place(&mut problem, &mut workspace, &PgsParams::default())?;
+/// assert!((problem.rows[0].impulse - 1.0).abs() < 1e-12);
+/// problem.rows[0].target = 0.5;
+/// problem.bodies[0].linear_velocity = Vector3::zeros();
+/// pgs::resolve_in_place(&mut problem, &mut workspace, &PgsParams::default())?;
+/// assert!((problem.rows[0].impulse - 0.5).abs() < 1e-12);
+/// # Ok::<(), tatami_lcp::LcpError>(())
+/// ```
+pub fn resolve_in_place<P: Projection>(
+    problem: &mut Problem<P>,
+    workspace: &mut PgsWorkspace,
+    params: &PgsParams,
+) -> Result<PgsInfo, LcpError> {
+    let same_shape = workspace.responses.len() >= problem.rows.len()
+        && workspace.whole.len() == problem.blocks.len()
+        && workspace.responded.len() == problem.blocks.len();
+    let prepared = if same_shape {
+        Prepared::Responses
+    } else {
+        Prepared::No
+    };
+    run(problem, workspace, params, prepared)
+}
+
+/// What the workspace already holds of the problem.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Prepared {
+    No,
+    /// The responses and factors of the last solve of the same problem.
+    Responses,
+}
+
+fn run<P: Projection>(
+    problem: &mut Problem<P>,
+    workspace: &mut PgsWorkspace,
+    params: &PgsParams,
+    prepared: Prepared,
+) -> Result<PgsInfo, LcpError> {
     problem.validate_bounds()?;
-    prepare(problem, workspace, params.warm_start);
+    prepare(problem, workspace, params.warm_start, prepared);
     let mut info = PgsInfo {
         sweeps: params.iterations,
         row_updates: 0,
@@ -232,6 +310,7 @@ fn prepare<P: Projection>(
     problem: &mut Problem<P>,
     workspace: &mut PgsWorkspace,
     warm_start: WarmStart,
+    prepared: Prepared,
 ) {
     let Problem {
         bodies,
@@ -246,17 +325,28 @@ fn prepare<P: Projection>(
     let widest = blocks.iter().map(|b| b.rows.len()).max().unwrap_or(0);
     workspace.block_impulse.resize(widest, 0.0);
     workspace.block_applied.resize(widest, 0.0);
-    workspace.whole.clear();
     workspace.loaded.clear();
-    workspace.responded.clear();
+    if prepared == Prepared::No {
+        workspace.whole.clear();
+        workspace.responded.clear();
+    }
     if workspace.factors.len() < blocks.len() {
         workspace.factors.resize(blocks.len(), Matrix6::zeros());
     }
-    for block in blocks.iter() {
-        let asks = block.projection.whole_block() && block.rows.len() <= WHOLE_BLOCK_ROWS;
-        workspace
-            .whole
-            .push(if asks { Whole::Untried } else { Whole::No });
+    for (index, block) in blocks.iter().enumerate() {
+        match prepared {
+            Prepared::No => {
+                let asks = block.projection.whole_block() && block.rows.len() <= WHOLE_BLOCK_ROWS;
+                workspace
+                    .whole
+                    .push(if asks { Whole::Untried } else { Whole::No });
+            }
+            Prepared::Responses => {
+                if let Whole::Left = workspace.whole[index] {
+                    workspace.whole[index] = Whole::Ready;
+                }
+            }
+        }
         let loaded = match warm_start {
             WarmStart::On => rows[block.rows.clone()]
                 .iter()
@@ -271,7 +361,13 @@ fn prepare<P: Projection>(
         let (a, b) = (bodies[block.body_a.0], bodies[block.body_b.0]);
         let responses = &mut workspace.responses[block.rows.clone()];
         let normals = block.projection.leading_normal_rows();
-        if loaded || normals == 0 {
+        if prepared == Prepared::Responses {
+            // Kept, all of them or the normal rows' (the others computed when first updated).
+            if loaded && !workspace.responded[index] {
+                responses_of(block, rows, &a, &b, responses);
+                workspace.responded[index] = true;
+            }
+        } else if loaded || normals == 0 {
             responses_of(block, rows, &a, &b, responses);
             workspace.responded.push(true);
         } else {
@@ -355,11 +451,13 @@ fn sweep<P: Projection>(
             Whole::Ready => {
                 let step = update_whole_block(problem, workspace, index, relaxation)?;
                 if step.is_none() {
-                    workspace.whole[index] = Whole::No;
+                    // A block at a bound (sliding, tipping, parting) stays there for a while,
+                    // and would pay for both updates every sweep.
+                    workspace.whole[index] = Whole::Left;
                 }
                 step
             }
-            Whole::No | Whole::Untried => None,
+            Whole::No | Whole::Untried | Whole::Left => None,
         };
         let change = match whole {
             Some(change) => change,

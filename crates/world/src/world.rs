@@ -495,7 +495,8 @@ impl World {
                 // a stack whatever its height or mass ratio (1 kg under 1000 kg) is pushed apart
                 // at once, where sweeps from rest carry a push up one level per sweep. Without
                 // gravity there is no ground to go up from.
-                pgs::solve_in_place(problem, &mut self.pgs_workspace, &from_rest)?;
+                // The velocity solve's responses and factors serve again: same rows, same masses.
+                pgs::resolve_in_place(problem, &mut self.pgs_workspace, &from_rest)?;
                 if self.gravity != Vector3::zeros() {
                     pgs::shock_propagation(
                         problem,
