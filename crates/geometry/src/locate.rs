@@ -122,21 +122,33 @@ impl ConvexPolygon {
     /// was reported inside). A point outside gets the sector of the edge it is farthest beyond.
     fn locate_in_sector(&self, p: &Point2<f64>, sector: Sector) -> Location {
         let n = self.vertices().len();
+        let neighbours = [(sector.0 + n - 1) % n, sector.0, (sector.0 + 1) % n];
+        // Strictly inside all three edges' lines: inside, without the distances' square roots
+        // (what the test below concludes too, every distance being positive).
+        if neighbours
+            .iter()
+            .all(|&i| signed_area(&self.vertex(i), &self.vertex(i + 1), p) > 0.0)
+        {
+            return Location {
+                sector,
+                inside: true,
+            };
+        }
         // Signed distance of p from edge i, positive inside.
         let distance = |i: usize| {
             let (a, b) = (self.vertex(i), self.vertex(i + 1));
             2.0 * signed_area(&a, &b, p) / (b - a).norm()
         };
-        let (worst, outside) = [(sector.0 + n - 1) % n, sector.0, (sector.0 + 1) % n]
-            .into_iter()
-            .map(|i| (i, distance(i)))
-            .fold((sector.0, f64::INFINITY), |best, (i, d)| {
+        let (worst, outside) = neighbours.into_iter().map(|i| (i, distance(i))).fold(
+            (sector.0, f64::INFINITY),
+            |best, (i, d)| {
                 if d < best.1 || d.is_nan() {
                     (i, d)
                 } else {
                     best
                 }
-            });
+            },
+        );
         if outside >= -self.tolerance() {
             Location {
                 sector,
