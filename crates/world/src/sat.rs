@@ -28,6 +28,8 @@ pub(crate) struct Polytope {
 #[derive(Debug, Clone, PartialEq)]
 struct Edge {
     ends: [usize; 2],
+    /// The two faces' indices in [`Polytope::faces`].
+    faces: [usize; 2],
     normals: [Vector3<f64>; 2],
     arc: Vector3<f64>,
 }
@@ -55,6 +57,7 @@ impl Polytope {
                 let normals = [faces.get(f)?.0, faces.get(g)?.0];
                 Some(Edge {
                     ends,
+                    faces: [f, g],
                     normals,
                     arc: normals[1].cross(&normals[0]),
                 })
@@ -117,28 +120,40 @@ pub(crate) fn separating_axis(
             return None;
         }
     }
-    for (m, e) in &b.faces {
-        let axis = -(rotation * m);
-        let separation = -a.support(&axis) + axis.dot(translation) - e;
-        if !consider(separation, axis) {
+    // B's face normals in A's frame, negated: B's side of the difference A − B on the Gauss map.
+    let b_normals: Vec<Vector3<f64>> = b.faces.iter().map(|(m, _)| -(rotation * m)).collect();
+    for (axis, (_, e)) in b_normals.iter().zip(&b.faces) {
+        let separation = -a.support(axis) + axis.dot(translation) - e;
+        if !consider(separation, *axis) {
             return None;
         }
     }
+    // Which side of each of A's arcs' planes each of B's normals lies on, `sides[f · E + e]`
+    // for B's face `f` and A's edge `e`: every edge pair's first test reads two of these, so
+    // each product is formed once per face instead of once per edge pair (a face has about
+    // three edges).
+    let arcs = a.edges.len();
+    let mut sides = Vec::with_capacity(b_normals.len() * arcs);
+    for c in &b_normals {
+        sides.extend(a.edges.iter().map(|a_edge| c.dot(&a_edge.arc)));
+    }
     // Edge pairs building a face of the Minkowski difference.
     for b_edge in &b.edges {
-        let ([p, q], [m1, m2]) = (b_edge.ends, b_edge.normals);
+        let ([p, q], [f1, f2]) = (b_edge.ends, b_edge.faces);
         let (p, q) = (
             rotation * b.vertices[p] + translation,
             rotation * b.vertices[q] + translation,
         );
-        // B's side of the difference A − B: its normals negated.
-        let (c, d) = (-(rotation * m1), -(rotation * m2));
+        let (c, d) = (b_normals[f1], b_normals[f2]);
         let d_x_c = d.cross(&c);
-        for a_edge in &a.edges {
+        let (c_sides, d_sides) = (
+            &sides[f1 * arcs..(f1 + 1) * arcs],
+            &sides[f2 * arcs..(f2 + 1) * arcs],
+        );
+        for ((a_edge, &cba), &dba) in a.edges.iter().zip(c_sides).zip(d_sides) {
             // The arcs cross where B's ends C, D lie on either side of A's arc's plane, A's ends
             // N₁, N₂ on either side of B's, and the arcs on one hemisphere. The first test
             // alone rejects most pairs, so it is made before the others' products.
-            let (cba, dba) = (c.dot(&a_edge.arc), d.dot(&a_edge.arc));
             if cba * dba >= 0.0 {
                 continue;
             }
