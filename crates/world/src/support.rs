@@ -17,6 +17,7 @@
 
 use nalgebra::{Matrix3, Point2, Point3, UnitQuaternion, Vector3};
 use smallvec::SmallVec;
+use std::sync::OnceLock;
 use tatami_contact::ContactFrame;
 use tatami_geometry::nearest::closest_point_on_segment;
 use tatami_geometry::{ConvexPolygon, PolygonKind, signed_area};
@@ -89,6 +90,18 @@ pub(crate) enum Outline {
 /// Vertices of the polygon standing in for a cylinder's cap.
 pub(crate) const CAP_VERTICES: usize = 64;
 
+/// `(cos t, sin t)` at the cap polygon's vertices, `t = 2π k / CAP_VERTICES`: computed once, not
+/// for every cap feature of every contact.
+fn cap_directions() -> &'static [(f64, f64); CAP_VERTICES] {
+    static DIRECTIONS: OnceLock<[(f64, f64); CAP_VERTICES]> = OnceLock::new();
+    DIRECTIONS.get_or_init(|| {
+        std::array::from_fn(|k| {
+            let t = std::f64::consts::TAU * k as f64 / CAP_VERTICES as f64;
+            (t.cos(), t.sin())
+        })
+    })
+}
+
 impl Outline {
     /// The outline of a polyhedron from its hull vertices.
     pub(crate) fn polyhedron(vertices: Vec<Vector3<f64>>) -> Self {
@@ -136,30 +149,32 @@ impl Outline {
                 // Ids: the rim points of the bottom cap, of the top cap, then the two ends of the
                 // side line, then the single rim point of either cap.
                 let top = u32::from(cap > 0.0);
-                let local: Vec<(Vector3<f64>, u32)> = if d.z.abs() >= angle.cos() || rim.is_none() {
-                    (0..rim_points)
-                        .map(|k| {
-                            let t = std::f64::consts::TAU * f64::from(k) / f64::from(rim_points);
-                            let v = Vector3::new(radius * t.cos(), radius * t.sin(), cap);
-                            (v, k + top * rim_points)
-                        })
-                        .collect()
+                let place = |(v, id): (Vector3<f64>, u32)| FeaturePoint {
+                    point: origin + rotation * v,
+                    id,
+                };
+                if d.z.abs() >= angle.cos() || rim.is_none() {
+                    out.extend((0u32..).zip(cap_directions()).map(|(k, (cos, sin))| {
+                        place((
+                            Vector3::new(radius * cos, radius * sin, cap),
+                            k + top * rim_points,
+                        ))
+                    }));
                 } else {
                     let rim = rim.unwrap_or_default();
                     if d.z.abs() <= angle.sin() {
                         // Lying on its side: the line along the axis.
-                        vec![
-                            (rim - Vector3::z() * *half_height, 2 * rim_points),
-                            (rim + Vector3::z() * *half_height, 2 * rim_points + 1),
-                        ]
+                        out.extend(
+                            [
+                                (rim - Vector3::z() * *half_height, 2 * rim_points),
+                                (rim + Vector3::z() * *half_height, 2 * rim_points + 1),
+                            ]
+                            .map(place),
+                        );
                     } else {
-                        vec![(rim + Vector3::z() * cap, 2 * rim_points + 2 + top)]
+                        out.push(place((rim + Vector3::z() * cap, 2 * rim_points + 2 + top)));
                     }
-                };
-                out.extend(local.into_iter().map(|(v, id)| FeaturePoint {
-                    point: origin + rotation * v,
-                    id,
-                }));
+                }
             }
             Self::Polyhedron { vertices, radius } => {
                 let local = rotation.inverse_transform_vector(direction);
