@@ -9,7 +9,7 @@ use tatami_lcp::BodyId;
 
 use crate::body::Body;
 use crate::broad_phase::SweepAndPrune;
-use crate::contact_set::{Computed, ContactSet, Met};
+use crate::contact_set::{Computed, ContactSet};
 use crate::parallel;
 use crate::parry_bridge::{self, Collider};
 use crate::support::{FeaturePoint, Outline, support};
@@ -41,11 +41,11 @@ struct Features {
 /// 1 µs a box pair.
 const PARALLEL_PAIRS: usize = 32;
 
-/// Fewest pairs computed in the last pass for the next to wake the pool's helpers before its
-/// broad phase ([`parallel::Warm`]): on the 1000-cube pile (2,000 and more a step) it cut the
-/// collision stage by about 5%; on the 210-cube pyramid, a few dozen a step, it cost more (the
-/// wake and a spinning helper) than the loop gained.
-const WARM_PAIRS: usize = 256;
+/// Fewest contacts computed in the last pass for the next to recompute the held pairs on
+/// every core beside the broad phase ([`ContactSet::refresh`]): the 1000-cube pile computes
+/// 1,500 and more a step; the 210-cube pyramid, a few dozen, would wait longer for a helper to
+/// wake than the pairs take.
+const PARALLEL_PASS: usize = 256;
 
 /// A body's collision data, built once when the body is added.
 #[derive(Debug, Clone)]
@@ -65,49 +65,11 @@ pub(crate) fn detect(
     workspace: &mut CollisionWorkspace,
     set: &mut ContactSet,
 ) {
-    // A pass like the last one shares many contacts with the pool: wake the helpers now, so
-    // they are up by the time the broad phase and the meeting pass are done.
-    let warm = (workspace.last_computed >= WARM_PAIRS).then(parallel::Warm::start);
     set.begin(margin, feature_angle);
     let poses: Vec<_> = bodies
         .iter()
         .map(|b| parry_bridge::pose(&b.position(), &b.rotation))
         .collect();
-    workspace.boxes.clear();
-    workspace.boxes.extend(
-        geometry
-            .iter()
-            .zip(&poses)
-            .map(|(g, pose)| g.collider.aabb(pose, margin)),
-    );
-    workspace.is_static.clear();
-    workspace
-        .is_static
-        .extend(bodies.iter().map(|b| !b.is_dynamic()));
-    workspace.broad_phase.overlapping_pairs(
-        &workspace.boxes,
-        &workspace.is_static,
-        &mut workspace.pairs,
-    );
-    // Stages: the set meets every overlapping pair, in order; the pairs it holds that moved are
-    // recomputed in place, and the new pairs computed, on every core (each contact is a pure
-    // function of the two bodies, so the result does not depend on the number of threads); the
-    // new pairs join the set in pair order.
-    workspace.new.clear();
-    let mut moved = 0;
-    for &(i, j) in &workspace.pairs {
-        let sizes = [geometry[i].outline.size(), geometry[j].outline.size()];
-        let (a, b) = (&bodies[i], &bodies[j]);
-        match set.meet(
-            (i, j),
-            [&(a.centre, a.rotation), &(b.centre, b.rotation)],
-            sizes,
-        ) {
-            Met::Kept => {}
-            Met::Moved => moved += 1,
-            Met::New => workspace.new.push((i, j)),
-        }
-    }
     let compute = |features: &mut Features, pair: (usize, usize)| {
         contact_of(
             bodies,
@@ -119,9 +81,39 @@ pub(crate) fn detect(
             features,
         )
     };
-    workspace.last_computed = moved + workspace.new.len();
-    drop(warm);
-    set.refresh(moved, PARALLEL_PAIRS, Features::default, compute);
+    let now = |i: usize| {
+        let body = &bodies[i];
+        ((body.centre, body.rotation), geometry[i].outline.size())
+    };
+    // Stages: the pairs the set holds are brought up to date (recomputed in place where a body
+    // moved) while the broad phase finds the overlapping pairs and meets them, on every core
+    // when the last pass computed many (each contact is a pure function of the two bodies, so
+    // the result does not depend on the number of threads); then the new pairs are computed,
+    // and join the set in pair order.
+    let on_every_core = workspace.last_computed >= PARALLEL_PASS;
+    let CollisionWorkspace {
+        boxes,
+        is_static,
+        broad_phase,
+        pairs,
+        new,
+        ..
+    } = workspace;
+    let ((), recomputed) = set.refresh(on_every_core, now, Features::default, compute, |meeting| {
+        boxes.clear();
+        boxes.extend(
+            geometry
+                .iter()
+                .zip(&poses)
+                .map(|(g, pose)| g.collider.aabb(pose, margin)),
+        );
+        is_static.clear();
+        is_static.extend(bodies.iter().map(|b| !b.is_dynamic()));
+        broad_phase.overlapping_pairs(boxes, is_static, pairs);
+        new.clear();
+        new.extend(pairs.iter().filter(|&&pair| !meeting.meet(pair)));
+    });
+    workspace.last_computed = recomputed + workspace.new.len();
     let contacts: Vec<_> = if workspace.new.len() >= PARALLEL_PAIRS {
         let mut slots: Vec<_> = workspace.new.iter().map(|&pair| (pair, None)).collect();
         parallel::for_each(&mut slots, Features::default, |features, (pair, out)| {

@@ -4,10 +4,11 @@
 //! take in this step's problem, and the impulses it ended the last solve with, by feature.
 //!
 //! A step uses it in stages, as Box2D v3's solver does: collision [`begin`](ContactSet::begin)s
-//! a pass, [`meet`](ContactSet::meet)s each overlapping pair (keeping the contact of one that
-//! has not moved), [`refresh`](ContactSet::refresh)es the known pairs that moved in place, on
-//! every core, [`insert`](ContactSet::insert)s new ones, and [`end`](ContactSet::end)s the pass,
-//! which is where pairs no longer touching are dropped; rows are built in set order, each pair
+//! a pass, [`refresh`](ContactSet::refresh)es the pairs it holds (keeping the contact of one
+//! that has not moved, recomputing the others in place, on every core) while the broad phase
+//! [`meet`](Meeting::meet)s each overlapping pair, [`insert`](ContactSet::insert)s new ones,
+//! and [`end`](ContactSet::end)s the pass, which is where pairs no longer touching or no longer
+//! met are dropped; rows are built in set order, each pair
 //! recording its blocks; [`warm_start`](ContactSet::warm_start) writes into every row the impulse of the row
 //! with the same key last step — the key is the feature id of the support vertex the row acts at
 //! (or the whole contact) and the row's rank there, so a row is matched exactly or starts from
@@ -20,6 +21,7 @@
 //! (bottom-up lowered the first step's error of a 10-tower only from 0.094 to 0.080 m/s).
 
 use std::collections::HashMap;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use foldhash::fast::FixedState;
 use std::ops::Range;
@@ -48,15 +50,20 @@ pub(crate) type Pose = (Point3<f64>, UnitQuaternion<f64>);
 /// the poses of the two bodies it was computed at.
 pub(crate) type Computed = (Contact, FeatureIds, [Pose; 2]);
 
-/// What [`ContactSet::meet`] found of a pair.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Met {
-    /// Held, and neither body moved: its contact stands.
-    Kept,
-    /// Held, but a body moved: [`ContactSet::refresh`] recomputes it.
-    Moved,
-    /// Not held: to be computed and [`ContactSet::insert`]ed.
-    New,
+/// The main thread's side of a collision pass while the held pairs are brought up to date
+/// (see [`ContactSet::refresh`]): meets the pairs the broad phase finds.
+pub(crate) struct Meeting<'a> {
+    index: &'a HashMap<(usize, usize), usize, FixedState>,
+    met: &'a mut [bool],
+}
+
+impl Meeting<'_> {
+    /// Meets pair `(a, b)`, found overlapping by the broad phase: `true` if the set holds it
+    /// (it stays, if still touching), `false` if it is new, to be computed and
+    /// [`ContactSet::insert`]ed.
+    pub(crate) fn meet(&mut self, pair: (usize, usize)) -> bool {
+        self.index.get(&pair).map(|&k| self.met[k] = true).is_some()
+    }
 }
 
 /// A row's name across steps: the feature id of the support vertex it acts at (`None` for rows
@@ -73,10 +80,8 @@ struct PairState {
     /// Last solve's impulses, sorted by key, and the model they were solved under.
     impulses: Vec<(RowKey, f64)>,
     model: Option<ContactModel>,
-    /// Met by the current collision pass.
-    seen: bool,
-    /// Met, but moved since its contact was computed: [`ContactSet::refresh`] recomputes it.
-    moved: bool,
+    /// Still touching as of the current collision pass (its contact kept or recomputed).
+    touching: bool,
 }
 
 /// One touching pair.
@@ -95,6 +100,8 @@ pub(crate) struct ContactSet {
     /// cost a further 0.3 ms of the 1000-cube pile's 7.9 ms collision stage (lookups and the
     /// rebuild in [`ContactSet::end`]).
     index: HashMap<(usize, usize), usize, FixedState>,
+    /// Whether the current collision pass's broad phase met each entry's pair.
+    met: Vec<bool>,
     /// Collision settings the contacts were computed with; others invalidate them.
     computed_with: (f64, f64),
     /// Scratch: row keys of one contact.
@@ -114,66 +121,83 @@ impl ContactSet {
             self.index.clear();
             self.computed_with = (margin, feature_angle);
         }
-        for entry in &mut self.entries {
-            entry.state.seen = false;
-        }
+        self.met.clear();
+        self.met.resize(self.entries.len(), false);
     }
 
-    /// Meets pair `(a, b)`, whose bodies are now at `poses`: keeps its contact if neither body
-    /// moved by more than [`REUSE_TOLERANCE`] since it was computed (`sizes` scale the turns),
-    /// else marks it for [`ContactSet::refresh`]. A pair that has not moved gets the same
-    /// contact again, and a resting stack's pairs are computed once.
-    pub(crate) fn meet(&mut self, pair: (usize, usize), poses: [&Pose; 2], sizes: [f64; 2]) -> Met {
-        let Some(entry) = self.index.get(&pair).map(|&k| &mut self.entries[k]) else {
-            return Met::New;
-        };
-        let still = |was: &Pose, now: &Pose, size: f64| {
+    /// Brings the pairs the set holds up to date, and runs `broad_phase`, which meets the pairs
+    /// now overlapping through its [`Meeting`]. A pair keeps its contact if neither body moved
+    /// by more than [`REUSE_TOLERANCE`] since it was computed (`now(body)` gives a body's pose,
+    /// and its size to scale turns), so a resting stack's pairs are computed once; the others
+    /// are recomputed in place by `compute` (from a per-thread `scratch`), and a pair it returns
+    /// `None` for (no longer touching) is dropped by [`ContactSet::end`], as is a pair the broad
+    /// phase did not meet.
+    ///
+    /// With `on_every_core`, the pool's helpers recompute the pairs while this thread runs the
+    /// broad phase, then this thread joins them: the broad phase's time is hidden, and the
+    /// helpers wake while it runs instead of at the start of the loop. That recomputes the moved
+    /// pairs the broad phase then drops too, which changes nothing but the time. Each contact is
+    /// a pure function of its two bodies, so the result does not depend on the number of
+    /// threads, and the old contact's memory is freed by the thread that replaces it. Returns
+    /// what `broad_phase` returned and how many contacts were recomputed.
+    pub(crate) fn refresh<S, R>(
+        &mut self,
+        on_every_core: bool,
+        now: impl Fn(usize) -> (Pose, f64) + Sync,
+        scratch: fn() -> S,
+        compute: impl Fn(&mut S, (usize, usize)) -> Option<Computed> + Sync,
+        broad_phase: impl FnOnce(&mut Meeting<'_>) -> R,
+    ) -> (R, usize) {
+        let still = |was: &Pose, (now, size): (Pose, f64)| {
             (now.0 - was.0).norm() <= REUSE_TOLERANCE
                 && now.1.angle_to(&was.1) * size.max(1.0) <= REUSE_TOLERANCE
         };
-        if (0..2).all(|k| still(&entry.state.poses[k], poses[k], sizes[k])) {
-            entry.state.seen = true;
-            Met::Kept
-        } else {
-            entry.state.moved = true;
-            Met::Moved
-        }
-    }
-
-    /// Recomputes, in place, the contact of every pair [`ContactSet::meet`] found moved, with
-    /// `compute` (from a per-thread `scratch`); a pair it returns `None` for (no longer
-    /// touching) is dropped by [`ContactSet::end`]. On every core when there are at least
-    /// `parallel_from` of them: each contact is a pure function of its two bodies, so the
-    /// result does not depend on the number of threads, and the old contact's memory is freed
-    /// by the thread that replaces it.
-    pub(crate) fn refresh<S, F>(
-        &mut self,
-        moved: usize,
-        parallel_from: usize,
-        scratch: fn() -> S,
-        compute: F,
-    ) where
-        F: Fn(&mut S, (usize, usize)) -> Option<Computed> + Sync,
-    {
-        let refresh = |scratch: &mut S, entry: &mut &mut Entry| {
-            entry.state.moved = false;
+        // Whether the entry's contact was recomputed.
+        let update = |scratch: &mut S, entry: &mut Entry| -> bool {
             let pair = (entry.contact.body_a.0, entry.contact.body_b.0);
-            if let Some((contact, features, poses)) = compute(scratch, pair) {
-                entry.contact = contact;
-                entry.state.features = features;
-                entry.state.poses = poses;
-                entry.state.seen = true;
+            let [was_a, was_b] = &entry.state.poses;
+            if still(was_a, now(pair.0)) && still(was_b, now(pair.1)) {
+                entry.state.touching = true;
+                return false;
             }
+            entry.state.touching = match compute(scratch, pair) {
+                Some((contact, features, poses)) => {
+                    entry.contact = contact;
+                    entry.state.features = features;
+                    entry.state.poses = poses;
+                    true
+                }
+                None => false,
+            };
+            true
         };
-        let mut moved_entries: Vec<&mut Entry> = Vec::with_capacity(moved);
-        moved_entries.extend(self.entries.iter_mut().filter(|entry| entry.state.moved));
-        if moved >= parallel_from {
-            parallel::for_each(&mut moved_entries, scratch, refresh);
+        let mut meeting = Meeting {
+            index: &self.index,
+            met: &mut self.met,
+        };
+        if on_every_core {
+            let recomputed = AtomicUsize::new(0);
+            let met = parallel::for_each_beside(
+                &mut self.entries,
+                scratch,
+                |scratch, entry| {
+                    if update(scratch, entry) {
+                        recomputed.fetch_add(1, Ordering::Relaxed);
+                    }
+                },
+                || broad_phase(&mut meeting),
+            );
+            (met, recomputed.into_inner())
         } else {
+            let met = broad_phase(&mut meeting);
             let mut scratch = scratch();
-            for entry in &mut moved_entries {
-                refresh(&mut scratch, entry);
+            let mut recomputed = 0;
+            for (entry, &met) in self.entries.iter_mut().zip(&self.met) {
+                if met && update(&mut scratch, entry) {
+                    recomputed += 1;
+                }
             }
+            (met, recomputed)
         }
     }
 
@@ -190,16 +214,18 @@ impl ContactSet {
                 blocks: 0..0,
                 impulses: Vec::new(),
                 model: None,
-                seen: true,
-                moved: false,
+                touching: true,
             },
         });
+        self.met.push(true);
     }
 
     /// Ends a collision pass: drops the pairs it did not meet (no longer touching) and orders the
     /// rest from the highest contact to the lowest along `gravity`.
     pub(crate) fn end(&mut self, gravity: &Vector3<f64>) {
-        self.entries.retain(|e| e.state.seen);
+        let mut met = self.met.iter();
+        self.entries
+            .retain(|e| met.next().is_some_and(|&met| met) && e.state.touching);
         // Sorted by key and index, then moved once each: an entry is a few hundred bytes, and
         // sorting the entries themselves moved each about log n times (1.7% of the 1000-cube
         // pile's step in memmove alone).
