@@ -18,6 +18,7 @@
 //! call.
 
 mod body;
+mod box_sat;
 mod broad_phase;
 mod builder;
 mod collision;

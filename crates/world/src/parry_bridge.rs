@@ -7,12 +7,11 @@
 
 use nalgebra::{Matrix3, Point3, UnitQuaternion, Vector3};
 use parry3d_f64::math::{Pose, Rotation, Vector};
-use parry3d_f64::query::{
-    ContactManifold, DefaultQueryDispatcher, PersistentQueryDispatcher, sat as parry_sat,
-};
+use parry3d_f64::query::{ContactManifold, DefaultQueryDispatcher, PersistentQueryDispatcher};
 use parry3d_f64::shape::{ConvexPolyhedron, Cuboid, SharedShape};
 
 use crate::HullMesh;
+use crate::box_sat;
 use crate::sat::{self, Polytope};
 use crate::shape::{MassProperties, Shape};
 
@@ -173,7 +172,7 @@ pub(crate) fn contact_normal(
     let (pose_a, pose_b) = (*pose_a * a.local, *pose_b * b.local);
     let pos_ba = pose_b.inverse() * pose_a;
     if let (Some(box_b), Some(box_a)) = (b.shape.as_cuboid(), a.shape.as_cuboid()) {
-        return cuboid_normal(box_b, box_a, &pos_ba, prediction)
+        return box_sat::cuboid_normal(box_b, box_a, &pos_ba, prediction)
             .map(|local| from_glam(pose_b.rotation * local).normalize());
     }
     if let (Some(polytope_b), Some(polytope_a)) = (&b.polytope, &a.polytope) {
@@ -202,30 +201,6 @@ pub(crate) fn contact_normal(
     let normal = from_glam(pose_b.rotation * manifold.local_n1);
     let length = normal.norm();
     (length.is_finite() && length > 0.0).then(|| normal / length)
-}
-
-/// The separating axis of two boxes (in box 1's frame, pointing out of box 1) by parry's SAT:
-/// the face normals of either box and the edge–edge axes, the one of largest separation — the
-/// axis parry's cuboid manifold uses, without building the manifold's contact points, which
-/// [`crate::support`] replaces with the full support polygon. `None` beyond `prediction`.
-fn cuboid_normal(box1: &Cuboid, box2: &Cuboid, pos12: &Pose, prediction: f64) -> Option<Vector> {
-    // The best axis separates most; any axis separating by more than `prediction` settles the
-    // answer, so the axes are tried cheapest first and the search ends at the first such one
-    // (most box pairs whose bounding boxes overlap do not touch).
-    let faces1 = parry_sat::cuboid_cuboid_find_local_separating_normal_oneway(box1, box2, pos12);
-    if faces1.0 > prediction {
-        return None;
-    }
-    let pos21 = pos12.inverse();
-    let faces2 = parry_sat::cuboid_cuboid_find_local_separating_normal_oneway(box2, box1, &pos21);
-    if faces2.0 > prediction {
-        return None;
-    }
-    let edges = parry_sat::cuboid_cuboid_find_local_separating_edge_twoway(box1, box2, pos12);
-    let best = [faces1, (faces2.0, pos12.rotation * -faces2.1), edges]
-        .into_iter()
-        .reduce(|best, axis| if axis.0 > best.0 { axis } else { best })?;
-    (best.0 <= prediction).then_some(best.1)
 }
 
 fn glam_points(points: &[Point3<f64>]) -> Vec<Vector> {

@@ -1,0 +1,223 @@
+//! The separating axis of two boxes: parry's answer, to the bit, for less.
+//!
+//! parry's `sat_cuboid_cuboid` tries 15 axes (three face normals of each box and the nine
+//! cross products of their edges) with two quaternion rotations an axis, and a resting pile
+//! of 1000 cubes asks it for some 1,600 touching pairs a step. For a touching pair, every
+//! axis's separation is found here first from the columns of the relative rotation (computed
+//! as parry computes them) in a few multiplications: `|t·a| − Σ h₁ᵢ|aᵢ| − Σ h₂ⱼ|cⱼ·a|`. Only
+//! the axes within [`CLOSE`] of the best are then evaluated with parry's own functions, and the
+//! winner is picked in parry's order with parry's tie rule, so the normal and every trajectory
+//! are the same as with parry alone (a test checks it bit for bit on random pairs). Pairs that
+//! parry could settle early or would answer with a blend of face normals — those separated
+//! along some face normal, or nearly so — are left to parry unchanged.
+
+use parry3d_f64::math::{Pose, Vector};
+use parry3d_f64::query::sat as parry_sat;
+use parry3d_f64::shape::Cuboid;
+
+/// Relative gap, as a fraction of the pair's size (`|t|₁ + |h₁|₁ + |h₂|₁`), within which two
+/// axes' quick separations count as a tie to be settled by parry's exact arithmetic. Both
+/// evaluations sum at most seven terms bounded by that size, so each is within about 1e-15 of
+/// it: 1e-12 leaves a factor of a thousand.
+const CLOSE: f64 = 1e-12;
+
+/// The separating axis of two boxes (in box 1's frame, pointing out of box 1) that parry's SAT
+/// finds: the face normals of either box and the edge–edge axes, the one of largest
+/// separation, without building the manifold's contact points, which [`crate::support`]
+/// replaces with the full support polygon. `None` beyond `prediction`.
+pub(crate) fn cuboid_normal(
+    box1: &Cuboid,
+    box2: &Cuboid,
+    pos12: &Pose,
+    prediction: f64,
+) -> Option<Vector> {
+    quick_normal(box1, box2, pos12, prediction)
+        .unwrap_or_else(|| parry_normal(box1, box2, pos12, prediction))
+}
+
+/// parry's three calls, in the order that lets most pairs whose bounding boxes overlap stop at
+/// the first: any axis separating by more than `prediction` settles the answer.
+fn parry_normal(box1: &Cuboid, box2: &Cuboid, pos12: &Pose, prediction: f64) -> Option<Vector> {
+    let faces1 = parry_sat::cuboid_cuboid_find_local_separating_normal_oneway(box1, box2, pos12);
+    if faces1.0 > prediction {
+        return None;
+    }
+    let pos21 = pos12.inverse();
+    let faces2 = parry_sat::cuboid_cuboid_find_local_separating_normal_oneway(box2, box1, &pos21);
+    if faces2.0 > prediction {
+        return None;
+    }
+    let edges = parry_sat::cuboid_cuboid_find_local_separating_edge_twoway(box1, box2, pos12);
+    let best = [faces1, (faces2.0, pos12.rotation * -faces2.1), edges]
+        .into_iter()
+        .reduce(|best, axis| if axis.0 > best.0 { axis } else { best })?;
+    (best.0 <= prediction).then_some(best.1)
+}
+
+/// [`parry_normal`]'s answer for a pair overlapping along all six face normals, from quick
+/// separations and parry's arithmetic on the close ones only; `None` (ask parry) for any other
+/// pair, non-finite input included.
+fn quick_normal(
+    box1: &Cuboid,
+    box2: &Cuboid,
+    pos12: &Pose,
+    prediction: f64,
+) -> Option<Option<Vector>> {
+    let (h1, h2, t) = (box1.half_extents, box2.half_extents, pos12.translation);
+    // Box 2's axes in box 1's frame, as parry's edge test computes them.
+    let c = [
+        pos12.rotation * Vector::X,
+        pos12.rotation * Vector::Y,
+        pos12.rotation * Vector::Z,
+    ];
+    let reach1 = |a: Vector| h1.dot(a.abs());
+    let reach2 =
+        |a: Vector| h2.x * c[0].dot(a).abs() + h2.y * c[1].dot(a).abs() + h2.z * c[2].dot(a).abs();
+    let close = CLOSE * (t.abs().element_sum() + h1.element_sum() + h2.element_sum());
+    // parry's order: box 1's faces, box 2's faces, then the edge pairs.
+    let mut separations = [f64::NEG_INFINITY; 15];
+    for i in 0..3 {
+        let axis = Vector::from_array(std::array::from_fn(|k| f64::from(u8::from(k == i))));
+        separations[i] = t.dot(axis).abs() - h1[i] - reach2(axis);
+        separations[3 + i] = t.dot(c[i]).abs() - reach1(c[i]) - h2[i];
+    }
+    // Overlapping along every face normal (so parry neither stops early nor blends), by more
+    // than the rounding: else parry decides.
+    if !separations[..6].iter().all(|&s| s < -close) {
+        return None;
+    }
+    // Edge i of box 1 with edge j of box 2: the axis L = eᵢ × cⱼ has no i-th component, and
+    // cₖ · L = eᵢ · (cⱼ × cₖ) is ± the i-th component of box 2's third axis (zero for k = j),
+    // so each reach is two terms, and one division makes the separation a unit axis's.
+    let edge_axes = edge_axes(&c);
+    for (k, axis) in edge_axes.iter().enumerate() {
+        if let Some((l, norm)) = *axis {
+            let (i, j) = (k % 3, k / 3);
+            let (i1, i2, j1, j2) = ((i + 1) % 3, (i + 2) % 3, (j + 1) % 3, (j + 2) % 3);
+            let reach = h1[i1] * l[i1].abs()
+                + h1[i2] * l[i2].abs()
+                + h2[j1] * c[j2][i].abs()
+                + h2[j2] * c[j1][i].abs();
+            separations[6 + k] = (t.dot(l).abs() - reach) / norm;
+        }
+    }
+    let best = separations
+        .iter()
+        .copied()
+        .fold(f64::NEG_INFINITY, f64::max);
+    if !best.is_finite() {
+        return None;
+    }
+    let near = |k: usize| separations[k] >= best - close;
+    // The close axes with parry's separations, in parry's order; a face group is evaluated
+    // whole, as parry returns its best.
+    let mut candidates: [Option<(f64, Vector)>; 11] = [None; 11];
+    if (0..3).any(near) {
+        candidates[0] =
+            Some(parry_sat::cuboid_cuboid_find_local_separating_normal_oneway(box1, box2, pos12));
+    }
+    if (3..6).any(near) {
+        let faces2 = parry_sat::cuboid_cuboid_find_local_separating_normal_oneway(
+            box2,
+            box1,
+            &pos12.inverse(),
+        );
+        candidates[1] = Some((faces2.0, pos12.rotation * -faces2.1));
+    }
+    for (k, axis) in edge_axes.iter().enumerate() {
+        if let Some((l, norm)) = *axis
+            && near(6 + k)
+        {
+            candidates[2 + k] = Some(parry_sat::cuboid_cuboid_compute_separation_wrt_local_line(
+                box1,
+                box2,
+                pos12,
+                l / norm,
+            ));
+        }
+    }
+    let winner = candidates
+        .into_iter()
+        .flatten()
+        .reduce(|best, axis| if axis.0 > best.0 { axis } else { best })?;
+    Some((winner.0 <= prediction).then_some(winner.1))
+}
+
+/// The nine edge–edge axes of parry's test (box 1's axes crossed with box 2's, `c`), in its
+/// order, each with its length; `None` where parry skips one (parallel edges).
+fn edge_axes(c: &[Vector; 3]) -> [Option<(Vector, f64)>; 9] {
+    let mut axes = [None; 9];
+    for (j, cj) in c.iter().enumerate() {
+        let crossed = [
+            Vector::new(0.0, -cj.z, cj.y),
+            Vector::new(cj.z, 0.0, -cj.x),
+            Vector::new(-cj.y, cj.x, 0.0),
+        ];
+        for (i, axis) in crossed.into_iter().enumerate() {
+            let norm = axis.length();
+            if norm > f64::EPSILON {
+                axes[3 * j + i] = Some((axis, norm));
+            }
+        }
+    }
+    axes
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use parry3d_f64::math::Rotation;
+
+    /// A deterministic uniform generator on [0, 1) (a 64-bit LCG's top 53 bits).
+    fn uniform_from(mut state: u64) -> impl FnMut() -> f64 {
+        move || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    fn bits(normal: Option<Vector>) -> Option<[u64; 3]> {
+        normal.map(|v| v.to_array().map(f64::to_bits))
+    }
+
+    /// Random box pairs of 1 cm to 10 m, turned at random, by a few exact quarter turns, by
+    /// nothing, or by a hair (1e-9 rad, where face axes tie within rounding), placed from deep
+    /// overlap to just beyond the prediction: the quick test gives parry's normal to the bit,
+    /// and settles most overlapping pairs itself.
+    #[test]
+    fn the_normal_is_parrys_to_the_bit() {
+        let mut uniform = uniform_from(2024);
+        let mut quick = 0;
+        let cases = 100_000;
+        for case in 0..cases {
+            let scale = [0.01, 0.1, 1.0, 10.0][case % 4];
+            let mut half = || Vector::new(uniform(), uniform(), uniform()) * scale + scale * 0.1;
+            let (h1, h2) = (half(), half());
+            let axis = Vector::new(uniform() - 0.5, uniform() - 0.5, uniform() - 0.5).normalize();
+            let rotation = match case % 5 {
+                0 => Rotation::IDENTITY,
+                1 => Rotation::from_axis_angle(Vector::Z, std::f64::consts::FRAC_PI_2),
+                2 => Rotation::from_axis_angle(axis, 1e-9),
+                _ => Rotation::from_axis_angle(axis, uniform() * std::f64::consts::TAU),
+            };
+            // From the centres' coinciding to a gap of about a tenth of the boxes' size.
+            let reach = (h1 + h2).length();
+            let direction =
+                Vector::new(uniform() - 0.5, uniform() - 0.5, uniform() - 0.5).normalize();
+            let translation = direction * reach * uniform() * 1.1;
+            let pos12 = Pose::from_parts(translation, rotation);
+            let (box1, box2) = (Cuboid::new(h1), Cuboid::new(h2));
+            let prediction = 0.005 * scale;
+            let expected = parry_normal(&box1, &box2, &pos12, prediction);
+            let got = cuboid_normal(&box1, &box2, &pos12, prediction);
+            assert_eq!(bits(got), bits(expected), "case {case}");
+            quick += usize::from(quick_normal(&box1, &box2, &pos12, prediction).is_some());
+        }
+        assert!(
+            quick > cases / 4,
+            "the quick test settled {quick} of {cases}"
+        );
+    }
+}
