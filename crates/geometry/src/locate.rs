@@ -13,6 +13,7 @@
 
 use nalgebra::{Point2, Vector2};
 
+use crate::polygon::{ring_next, ring_previous};
 use crate::{ConvexPolygon, PolygonKind, signed_area};
 
 /// A sector of the fan about the centroid: sector `i` lies between the rays through vertices `i`
@@ -122,7 +123,7 @@ impl ConvexPolygon {
     /// was reported inside). A point outside gets the sector of the edge it is farthest beyond.
     fn locate_in_sector(&self, p: &Point2<f64>, sector: Sector) -> Location {
         let n = self.vertices().len();
-        let neighbours = [(sector.0 + n - 1) % n, sector.0, (sector.0 + 1) % n];
+        let neighbours = [ring_previous(sector.0, n), sector.0, ring_next(sector.0, n)];
         // Strictly inside all three edges' lines: inside, without the distances' square roots
         // (what the test below concludes too, every distance being positive).
         if neighbours

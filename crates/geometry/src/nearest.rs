@@ -16,6 +16,7 @@
 
 use nalgebra::Point2;
 
+use crate::polygon::{ring_next, ring_previous};
 use crate::{ConvexPolygon, PolygonKind, Sector, signed_area};
 
 impl ConvexPolygon {
@@ -96,8 +97,8 @@ impl ConvexPolygon {
         let mut dist_sq = (self.vertex(at) - p).norm_squared();
         for _ in 0..n {
             let (edge, next) = match direction {
-                Walk::CounterClockwise => (at, (at + 1) % n),
-                Walk::Clockwise => ((at + n - 1) % n, (at + n - 1) % n),
+                Walk::CounterClockwise => (at, ring_next(at, n)),
+                Walk::Clockwise => (ring_previous(at, n), ring_previous(at, n)),
             };
             if let Some(foot) = self.foot_on_edge(edge, p) {
                 return WalkEnd::Foot(foot);

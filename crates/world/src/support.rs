@@ -20,6 +20,7 @@ use smallvec::SmallVec;
 use std::sync::OnceLock;
 use tatami_contact::ContactFrame;
 use tatami_geometry::nearest::closest_point_on_segment;
+use tatami_geometry::polygon::ring_next;
 use tatami_geometry::{ConvexPolygon, PolygonKind, signed_area};
 
 /// Distance, as a fraction of the support polygon's bounding-box diagonal, within which a
@@ -287,11 +288,15 @@ pub(crate) fn support(
 /// Where support vertex `p` comes from: the nearest point of A's outline or else of B's within
 /// `tolerance`, else the crossing of the edges of each that pass nearest to it.
 fn identify(p: &Point2<f64>, a: &Surface, b: &Surface, tolerance: f64) -> FeatureId {
+    // Points farther than twice the tolerance by their squared distance are passed over without
+    // a square root (the factor covers its rounding): they could not be within it.
+    let within = 4.0 * tolerance * tolerance;
     let at_point = |s: &Surface| {
         s.outline
             .vertices()
             .iter()
             .zip(&s.ids)
+            .filter(|(v, _)| (*v - p).norm_squared() <= within)
             .map(|(v, &id)| ((v - p).norm(), id))
             .filter(|&(distance, _)| distance <= tolerance)
             .min_by(|x, y| x.0.total_cmp(&y.0))
@@ -375,7 +380,7 @@ impl Surface {
         let v = self.outline.vertices();
         (0..v.len())
             .map(|k| {
-                let q = closest_point_on_segment(&v[k], &v[(k + 1) % v.len()], p);
+                let q = closest_point_on_segment(&v[k], &v[ring_next(k, v.len())], p);
                 ((q - p).norm_squared(), self.ids[k])
             })
             .min_by(|a, b| a.0.total_cmp(&b.0))
@@ -400,10 +405,10 @@ fn clip_polygon(subject: &[Point2<f64>], clip: &[Point2<f64>]) -> Points<Point2<
     let mut current = Points::from_slice(subject);
     let mut next = Points::with_capacity(subject.len() + clip.len());
     for (i, c0) in clip.iter().enumerate() {
-        let c1 = &clip[(i + 1) % clip.len()];
+        let c1 = &clip[ring_next(i, clip.len())];
         next.clear();
         for (j, p) in current.iter().enumerate() {
-            let q = &current[(j + 1) % current.len()];
+            let q = &current[ring_next(j, current.len())];
             let (sp, sq) = (signed_area(c0, c1, p), signed_area(c0, c1, q));
             if sp >= 0.0 {
                 next.push(*p);
@@ -425,7 +430,7 @@ fn clip_segment(s: &[Point2<f64>], clip: &[Point2<f64>]) -> Points<Point2<f64>> 
     let (p, q) = (s[0], s[1]);
     let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
     for (i, c0) in clip.iter().enumerate() {
-        let c1 = &clip[(i + 1) % clip.len()];
+        let c1 = &clip[ring_next(i, clip.len())];
         let (sp, sq) = (signed_area(c0, c1, &p), signed_area(c0, c1, &q));
         if sp < 0.0 && sq < 0.0 {
             return Points::new();
