@@ -592,25 +592,66 @@ fn update_block<P: Projection>(
     } = problem;
     let block = &mut blocks[index];
     let (ia, ib) = (block.body_a.0, block.body_b.0);
-    let rows = &mut rows[block.rows.clone()];
-    let responses = &workspace.responses[responses];
-    let impulse = &mut workspace.block_impulse[..rows.len()];
-    let applied = &mut workspace.block_applied[..rows.len()];
+    // The two bodies are read and moved after every row: copies stay in registers for the
+    // block's update instead of going through the body array each time (written back below).
+    // A block on one body keeps the copies equal, in the order `apply` adds to it.
+    let same = ia == ib;
+    let (mut a, mut b) = (bodies[ia], bodies[ib]);
+    let push = |a: &mut SolverBody, b: &mut SolverBody, response: &RowResponse, delta: f64| {
+        a.linear_velocity += response.linear_a * delta;
+        a.angular_velocity += response.angular_a * delta;
+        if same {
+            *b = *a;
+        }
+        b.linear_velocity += response.linear_b * delta;
+        b.angular_velocity += response.angular_b * delta;
+        if same {
+            *a = *b;
+        }
+    };
+    let result = update_block_rows(
+        (&mut a, &mut b),
+        &mut rows[block.rows.clone()],
+        &mut block.projection,
+        &workspace.responses[responses],
+        (&mut workspace.block_impulse, &mut workspace.block_applied),
+        relaxation,
+        push,
+    );
+    bodies[ia] = a;
+    bodies[ib] = b;
+    result.map_err(|()| LcpError::NonFinite { block: index })
+}
+
+/// [`update_block`]'s rows, on copies of the block's two bodies moved by `push`; `Err` on a
+/// non-finite step.
+fn update_block_rows<P: Projection>(
+    (a, b): (&mut SolverBody, &mut SolverBody),
+    rows: &mut [crate::Row],
+    projection: &mut P,
+    responses: &[RowResponse],
+    (impulse, applied): (&mut [f64], &mut [f64]),
+    relaxation: f64,
+    push: impl Fn(&mut SolverBody, &mut SolverBody, &RowResponse, f64),
+) -> Result<Change, ()> {
+    let impulse = &mut impulse[..rows.len()];
+    let applied = &mut applied[..rows.len()];
     for (k, row) in rows.iter().enumerate() {
         impulse[k] = row.impulse;
         applied[k] = row.impulse;
     }
-    let pair = block
-        .projection
+    let pair = projection
         .tangent_pair()
         .filter(|&first| first + 1 < rows.len());
-    let normals = block.projection.leading_normal_rows();
+    let normals = projection.leading_normal_rows();
     let mut k = 0;
     while k < rows.len() {
-        let error = |r: usize| rows[r].jacobian.velocity(&bodies[ia], &bodies[ib]) - rows[r].target;
+        let error = |r: usize, a: &SolverBody, b: &SolverBody| {
+            rows[r].jacobian.velocity(a, b) - rows[r].target
+        };
         let width = if pair == Some(k) {
             // Exact line search along −e on the quadratic ½ λᵀKλ + eᵀλ (module doc).
-            let (e1, e2) = (error(k), error(k + 1));
+            let (e1, e2) = (error(k, a, b), error(k + 1, a, b));
             let (r1, r2) = (&responses[k], &responses[k + 1]);
             let curvature =
                 r1.inverse_mass * e1 * e1 + 2.0 * r1.coupling * e1 * e2 + r2.inverse_mass * e2 * e2;
@@ -621,17 +662,17 @@ fn update_block<P: Projection>(
             }
             2
         } else {
-            impulse[k] -= relaxation * responses[k].effective_mass * error(k);
+            impulse[k] -= relaxation * responses[k].effective_mass * error(k, a, b);
             1
         };
-        block.projection.project(impulse, k);
+        projection.project(impulse, k);
         for j in 0..rows.len() {
             let delta = impulse[j] - applied[j];
             if delta != 0.0 {
                 if !delta.is_finite() {
-                    return Err(LcpError::NonFinite { block: index });
+                    return Err(());
                 }
-                apply(bodies, ia, ib, &responses[j], delta);
+                push(a, b, &responses[j], delta);
                 applied[j] = impulse[j];
             }
         }
