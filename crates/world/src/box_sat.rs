@@ -166,17 +166,8 @@ fn edge_axes(c: &[Vector; 3]) -> [Option<(Vector, f64)>; 9] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::parry_bridge::tests::uniform_from;
     use parry3d_f64::math::Rotation;
-
-    /// A deterministic uniform generator on [0, 1) (a 64-bit LCG's top 53 bits).
-    fn uniform_from(mut state: u64) -> impl FnMut() -> f64 {
-        move || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
 
     fn bits(normal: Option<Vector>) -> Option<[u64; 3]> {
         normal.map(|v| v.to_array().map(f64::to_bits))

@@ -280,11 +280,11 @@ pub(crate) fn convex_mass_properties(points: &[Point3<f64>]) -> Option<MassPrope
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// A deterministic uniform generator on [0, 1) (a 64-bit LCG's top 53 bits).
-    fn uniform_from(mut state: u64) -> impl FnMut() -> f64 {
+    pub(crate) fn uniform_from(mut state: u64) -> impl FnMut() -> f64 {
         move || {
             state = state
                 .wrapping_mul(6364136223846793005)
