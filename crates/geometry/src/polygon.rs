@@ -306,15 +306,15 @@ fn simplify(ring: Vertices, tolerance: f64) -> Vertices {
             })
             .fold(0.0, f64::max)
     };
-    let cost_of = |i: usize| deviation((i + n - 1) % n, (i + 1) % n);
+    let cost_of = |i: usize| deviation(ring_previous(i, n), ring_next(i, n));
     // Most rings have nothing to remove (a box face, a clipped overlap): return them as they
-    // are, without the bookkeeping below. Each vertex's cost is then its own distance from its
-    // neighbours' chord, found without `cost_of`'s integer divisions (four a vertex, which were
-    // most of a box face's hull time).
-    // A vertex farther than twice the tolerance from its chord's line, by the cross product, is
-    // farther than the tolerance from the chord itself, found without a division or a square
-    // root. The factor of two covers the cross product's rounding: a few ulps of the points'
-    // spread (under the tolerance's 1e-9 of it) and of their coordinates (under its 8 ulps).
+    // are, without the bookkeeping below. A vertex's cost is then its own distance from its
+    // neighbours' chord, found without `deviation`'s index divisions (which were most of a box
+    // face's hull time). A vertex farther than twice the tolerance from the chord's line, by
+    // the cross product, is farther than the tolerance from the chord, found without a
+    // division or a square root: the factor of two covers the cross product's rounding, a few
+    // ulps of the points' spread (under the tolerance's 1e-9 of it) and of their coordinates
+    // (under its 8 ulps).
     let bent = |i: usize| {
         let before = ring[ring_previous(i, n)];
         let after = ring[ring_next(i, n)];

@@ -55,9 +55,10 @@ fn parry_normal(box1: &Cuboid, box2: &Cuboid, pos12: &Pose, prediction: f64) -> 
     (best.0 <= prediction).then_some(best.1)
 }
 
-/// [`parry_normal`]'s answer for a pair overlapping along all six face normals, from quick
-/// separations and parry's arithmetic on the close ones only; `None` (ask parry) for any other
-/// pair, non-finite input included.
+/// [`parry_normal`]'s answer, from quick separations: for a pair overlapping along all six face
+/// normals, with parry's arithmetic on the close axes only; for a pair apart along one face
+/// normal of a box and no other of it, `None`. `None` (ask parry) for any other pair,
+/// non-finite input included.
 fn quick_normal(
     box1: &Cuboid,
     box2: &Cuboid,
@@ -97,19 +98,15 @@ fn quick_normal(
     if !separations[..6].iter().all(|&s| s < -close) {
         return None;
     }
-    // Edge i of box 1 with edge j of box 2: the axis L = eᵢ × cⱼ has no i-th component, and
-    // cₖ · L = eᵢ · (cⱼ × cₖ) is ± the i-th component of box 2's third axis (zero for k = j),
-    // so each reach is two terms, and one division makes the separation a unit axis's.
+    // Edge pairs: the separation along the unnormalised axis L, divided once by |L|. Every
+    // term is a product with L's own components, so its rounding shrinks with |L| and the
+    // division leaves it within `close` even for nearly parallel edges (|L| down to 1e-16); the
+    // shortcut cₖ · L = ±(box 2's third axis)ᵢ would not, its error from the rotation's
+    // orthonormality being divided by |L|.
     let edge_axes = edge_axes(&c);
     for (k, axis) in edge_axes.iter().enumerate() {
         if let Some((l, norm)) = *axis {
-            let (i, j) = (k % 3, k / 3);
-            let (i1, i2, j1, j2) = ((i + 1) % 3, (i + 2) % 3, (j + 1) % 3, (j + 2) % 3);
-            let reach = h1[i1] * l[i1].abs()
-                + h1[i2] * l[i2].abs()
-                + h2[j1] * c[j2][i].abs()
-                + h2[j2] * c[j1][i].abs();
-            separations[6 + k] = (t.dot(l).abs() - reach) / norm;
+            separations[6 + k] = (t.dot(l).abs() - reach1(l) - reach2(l)) / norm;
         }
     }
     let best = separations

@@ -108,7 +108,7 @@ pub(crate) fn detect(
     // the result does not depend on the number of threads); then the new pairs are computed,
     // and join the set in pair order.
     let on_every_core = *last_computed >= PARALLEL_PASS;
-    let ((), recomputed) = set.refresh(on_every_core, now, Features::default, compute, |meeting| {
+    let recomputed = set.refresh(on_every_core, now, Features::default, compute, |meeting| {
         boxes.clear();
         boxes.extend(
             geometry

@@ -139,15 +139,15 @@ impl ContactSet {
     /// pairs the broad phase then drops too, which changes nothing but the time. Each contact is
     /// a pure function of its two bodies, so the result does not depend on the number of
     /// threads, and the old contact's memory is freed by the thread that replaces it. Returns
-    /// what `broad_phase` returned and how many contacts were recomputed.
-    pub(crate) fn refresh<S, R>(
+    /// how many contacts were recomputed.
+    pub(crate) fn refresh<S>(
         &mut self,
         on_every_core: bool,
         now: impl Fn(usize) -> (Pose, f64) + Sync,
         scratch: fn() -> S,
         compute: impl Fn(&mut S, (usize, usize)) -> Option<Computed> + Sync,
-        broad_phase: impl FnOnce(&mut Meeting<'_>) -> R,
-    ) -> (R, usize) {
+        broad_phase: impl FnOnce(&mut Meeting<'_>),
+    ) -> usize {
         let still = |was: &Pose, (now, size): (Pose, f64)| {
             (now.0 - was.0).norm() <= REUSE_TOLERANCE
                 && now.1.angle_to(&was.1) * size.max(1.0) <= REUSE_TOLERANCE
@@ -177,7 +177,7 @@ impl ContactSet {
         };
         if on_every_core {
             let recomputed = AtomicUsize::new(0);
-            let met = parallel::for_each_beside(
+            parallel::for_each_beside(
                 &mut self.entries,
                 scratch,
                 |scratch, entry| {
@@ -187,9 +187,9 @@ impl ContactSet {
                 },
                 || broad_phase(&mut meeting),
             );
-            (met, recomputed.into_inner())
+            recomputed.into_inner()
         } else {
-            let met = broad_phase(&mut meeting);
+            broad_phase(&mut meeting);
             let mut scratch = scratch();
             let mut recomputed = 0;
             for (entry, &met) in self.entries.iter_mut().zip(&self.met) {
@@ -197,7 +197,7 @@ impl ContactSet {
                     recomputed += 1;
                 }
             }
-            (met, recomputed)
+            recomputed
         }
     }
 
@@ -220,8 +220,8 @@ impl ContactSet {
         self.met.push(true);
     }
 
-    /// Ends a collision pass: drops the pairs it did not meet (no longer touching) and orders the
-    /// rest from the highest contact to the lowest along `gravity`.
+    /// Ends a collision pass: drops the pairs the broad phase did not meet or that no longer
+    /// touch, and orders the rest from the highest contact to the lowest along `gravity`.
     pub(crate) fn end(&mut self, gravity: &Vector3<f64>) {
         let mut met = self.met.iter();
         self.entries
