@@ -11,7 +11,7 @@
 //! helper has started, so a short loop waits for the slowest wake: callers keep those on their
 //! own thread). [`for_each_beside`] goes further: the helpers start on the items while the
 //! caller does other work first (collision's broad phase), so their wake-up is hidden behind
-//! it. Each item is a pure function of its own data, so which thread does it changes nothing in
+//! it; [`join_beside`] does the same for one job (the position pass beside the velocity solve). Each item is a pure function of its own data, so which thread does it changes nothing in
 //! the result.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -65,6 +65,41 @@ where
     })
 }
 
+/// Runs `beside` on the calling thread while a helper of the pool runs `job`; a `job` no helper
+/// has taken by the time `beside` ends is run on the calling thread then (one thread, or a
+/// helper slow to wake). `job` runs once either way, so where it ran changes nothing in the
+/// result when the two share no state, as their borrows ensure.
+pub(crate) fn join_beside<A, B>(
+    beside: impl FnOnce() -> A,
+    job: impl FnOnce() -> B + Send,
+) -> (A, B)
+where
+    B: Send,
+{
+    let job = Mutex::new(Some(job));
+    let answer = Mutex::new(None);
+    let take = || {
+        let taken = job.lock().unwrap_or_else(PoisonError::into_inner).take();
+        if let Some(job) = taken {
+            let result = job();
+            *answer.lock().unwrap_or_else(PoisonError::into_inner) = Some(result);
+        }
+    };
+    let result = rayon::in_place_scope(|scope| {
+        if rayon::current_num_threads() > 1 {
+            scope.spawn(|_| take());
+        }
+        let result = beside();
+        take();
+        result
+    });
+    let answer = answer
+        .into_inner()
+        .unwrap_or_else(PoisonError::into_inner)
+        .expect("the job ran: the calling thread runs it unless a helper took it, and the scope waited for the helper");
+    (result, answer)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -102,6 +137,33 @@ mod tests {
             );
             assert_eq!(ran_on, caller, "{len} items");
             assert!(items.iter().all(|&v| v == 1), "{len} items");
+        }
+    }
+
+    #[test]
+    fn join_beside_runs_the_job_once_and_beside_on_the_calling_thread() {
+        let check = |case: &str| {
+            let caller = std::thread::current().id();
+            let runs = AtomicUsize::new(0);
+            let (ran_on, answer) = join_beside(
+                || std::thread::current().id(),
+                || {
+                    runs.fetch_add(1, Ordering::Relaxed);
+                    (1..=100u64).sum::<u64>()
+                },
+            );
+            assert_eq!(ran_on, caller, "{case}");
+            assert_eq!(answer, 5050, "{case}");
+            assert_eq!(runs.into_inner(), 1, "{case}");
+        };
+        // From outside any pool, as a program's own thread steps a world, and from inside one.
+        check("global pool");
+        for threads in [1, 2] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| check(&format!("{threads} threads")));
         }
     }
 }

@@ -9,10 +9,12 @@ pub struct StepTimings {
     pub collision: Duration,
     /// Contact rows and solver bodies.
     pub setup: Duration,
-    /// The solver call alone.
+    /// The velocity solve (with its warm start and shock pass), and the copy of the problem the
+    /// position pass works on.
     pub solve: Duration,
     /// The position correction (split-impulse) pass; zero on steps where no contact is deeper
-    /// than the slop.
+    /// than the slop. On a large problem the pass runs on a helper thread beside the velocity
+    /// solve, and this is only what the step still waits for after it.
     pub correction: Duration,
     /// Velocities back to bodies, positions and orientations advanced.
     pub integrate: Duration,

@@ -6,12 +6,13 @@ use std::time::Instant;
 use nalgebra::Vector3;
 use tatami_contact::{Contact, ContactProjection};
 use tatami_lcp::direct::{self, DirectInfo};
-use tatami_lcp::pgs::{self, PgsParams, PgsWorkspace, Record, WarmStart};
-use tatami_lcp::{LcpError, Problem, SolverBody};
+use tatami_lcp::pgs::{self, PgsParams, PgsWorkspace, Record, Support, WarmStart};
+use tatami_lcp::{LcpError, Problem, Row, SolverBody};
 
 use crate::body::{BodyKind, Motion};
 use crate::collision::{self, BodyGeometry, CollisionWorkspace};
 use crate::contact_set::ContactSet;
+use crate::parallel;
 use crate::parry_bridge::Collider;
 use crate::sleep::Islands;
 use crate::support::Outline;
@@ -53,10 +54,12 @@ pub struct World {
     collision_workspace: CollisionWorkspace,
     /// The islands of touching dynamic bodies, for sleeping.
     islands: Islands,
-    /// Scratch: the velocity solve's answer set aside — before the shock pass, to be put back
-    /// if the pass would add energy, and during the position pass, which reuses the problem.
+    /// Scratch: the velocity solve's answer set aside before the shock pass, to be put back if
+    /// the pass would add energy.
     set_aside: SolvedState,
     pgs_workspace: PgsWorkspace,
+    /// The position pass's problem and workspace, reused across steps.
+    position_pass: PositionPass,
     timings: StepTimings,
     time: f64,
     /// Kahan compensation of `time`, so a thousand steps of 0.01 s end at exactly 10 s.
@@ -91,6 +94,7 @@ impl World {
             islands: Islands::default(),
             set_aside: SolvedState::default(),
             pgs_workspace: PgsWorkspace::default(),
+            position_pass: PositionPass::default(),
             timings: StepTimings::default(),
             time: 0.0,
             time_compensation: 0.0,
@@ -238,9 +242,7 @@ impl World {
         let collided = Instant::now();
         self.build_problem(dt)?;
         let built = Instant::now();
-        self.solve(dt)?;
-        let solved = Instant::now();
-        self.correct_penetration()?;
+        let solved = self.solve_and_correct(dt)?;
         let corrected = Instant::now();
         self.integrate(dt)?;
         self.fall_asleep(dt);
@@ -368,98 +370,76 @@ impl World {
         Ok(())
     }
 
-    fn solve(&mut self, dt: f64) -> Result<(), StepError> {
-        let model = self.settings.model;
+    /// The velocity solve, then (on steps with pushes left to it) the position pass. The pass
+    /// solves its own copy of the problem ([`PositionPass`]) and shares nothing with the velocity
+    /// solve, so on a large problem it runs on a helper thread meanwhile
+    /// ([`parallel::join_beside`]); either way the answer is the same to the bit. Returns when
+    /// the velocity solve ended, for the stage timings.
+    fn solve_and_correct(&mut self, dt: f64) -> Result<Instant, StepError> {
         self.direct_info = None;
-        let result = match &self.settings.solver {
-            Solver::Pgs(params) => {
-                let warm = params.warm_start == WarmStart::On;
-                if warm {
-                    self.contact_set
-                        .warm_start(model, &mut self.problem, &(self.gravity * dt));
-                }
-                let mut result =
-                    pgs::solve_in_place(&mut self.problem, &mut self.pgs_workspace, params)
-                        .map(drop);
-                if self.settings.shock_propagation && result.is_ok() {
-                    result = self.guarded_shock_pass();
-                }
-                result
-            }
-            Solver::Direct(params) => direct::solve(&mut self.problem, params).map(|info| {
-                self.direct_info = Some(info);
-            }),
-        };
-        result.map_err(|source| StepError::Solver {
-            pair: self.contact_of_error(&source),
-            source,
-        })
-    }
-
-    /// The shock pass after the velocity solve, kept only if it leaves the bodies with no more
-    /// kinetic energy than the solve did: held still, a supporting body does not feel the
-    /// pass's reactions, which can push its load up as if off a fixed floor; undone then, the
-    /// pass can only take energy out (a falling stack stopped on its base).
-    fn guarded_shock_pass(&mut self) -> Result<(), LcpError> {
-        let energy = |bodies: &[Body], solved: &[SolverBody]| -> f64 {
-            bodies
-                .iter()
-                .zip(solved)
-                .filter(|(b, _)| b.is_dynamic())
-                .map(|(b, s)| b.kinetic_energy_at(&s.linear_velocity, &s.angular_velocity))
-                .sum()
-        };
-        let before = energy(&self.bodies, &self.problem.bodies);
-        self.set_aside.save(&self.problem);
-        pgs::shock_propagation(
-            &mut self.problem,
-            &mut self.pgs_workspace,
-            self.contact_set.shock_order(&self.gravity),
-        )?;
-        if energy(&self.bodies, &self.problem.bodies) > before {
-            self.set_aside.restore(&mut self.problem);
-        }
-        Ok(())
-    }
-
-    /// The position pass of split impulses: when a contact's push exceeds what the velocity
-    /// solve took, solves the velocity problem's blocks again from rest with the remaining
-    /// pushes as targets, with the same solver; the solution's velocities, bounded by
-    /// `max_depenetration_speed`, move positions only (see [`World::step`]). The pass reuses
-    /// the velocity problem in place — its rows, blocks and masses are the same — with the
-    /// velocity answer set aside and put back after, so nothing is copied but the answer.
-    fn correct_penetration(&mut self) -> Result<(), StepError> {
         self.pseudo_velocities.clear();
-        if self.biases.iter().all(|&bias| bias == 0.0) {
-            return Ok(());
+        let correcting = self.biases.iter().any(|&bias| bias != 0.0);
+        if correcting {
+            self.position_pass.set_up(&self.problem, &self.biases);
         }
-        self.set_aside.save(&self.problem);
-        for body in &mut self.problem.bodies {
-            body.linear_velocity = Vector3::zeros();
-            body.angular_velocity = Vector3::zeros();
+        if let Solver::Pgs(params) = &self.settings.solver
+            && params.warm_start == WarmStart::On
+        {
+            self.contact_set.warm_start(
+                self.settings.model,
+                &mut self.problem,
+                &(self.gravity * dt),
+            );
         }
-        // The pushes become the targets; the swap back below restores both.
-        let swap_targets = |problem: &mut Problem<ContactProjection>, biases: &mut [f64]| {
-            for (row, bias) in problem.rows.iter_mut().zip(biases) {
-                std::mem::swap(&mut row.target, bias);
-            }
+        let under_gravity = self.gravity != Vector3::zeros();
+        let beside = self.problem.rows.len() >= POSITION_PASS_BESIDE_ROWS;
+        let order = if self.settings.shock_propagation || (correcting && under_gravity) {
+            self.contact_set.shock_order(&self.gravity)
+        } else {
+            &[]
         };
-        swap_targets(&mut self.problem, &mut self.biases);
-        for row in &mut self.problem.rows {
-            row.impulse = 0.0;
+        let mut velocity = VelocitySolve {
+            problem: &mut self.problem,
+            workspace: &mut self.pgs_workspace,
+            set_aside: &mut self.set_aside,
+            bodies: &self.bodies,
+            settings: &self.settings,
+            order,
+        };
+        let position = &mut self.position_pass;
+        let solver = &self.settings.solver;
+        let ((velocity_result, solved), position_result) = if !correcting {
+            ((velocity.run(), Instant::now()), Ok(()))
+        } else if beside {
+            parallel::join_beside(
+                || (velocity.run(), Instant::now()),
+                || position.solve(solver, under_gravity, order),
+            )
+        } else {
+            let velocity_result = velocity.run();
+            let solved = Instant::now();
+            (
+                (velocity_result, solved),
+                position.solve(solver, under_gravity, order),
+            )
+        };
+        let name = |world: &Self, source: LcpError| StepError::Solver {
+            pair: world.contact_of_error(&source),
+            source,
+        };
+        self.direct_info = velocity_result.map_err(|source| name(self, source))?;
+        position_result.map_err(|source| name(self, source))?;
+        if correcting {
+            self.limit_pseudo_velocities();
         }
-        let result = self.solve_position_pass();
-        self.pseudo_velocities.clone_from(&self.problem.bodies);
-        swap_targets(&mut self.problem, &mut self.biases);
-        self.set_aside.restore(&mut self.problem);
-        if let Err(source) = result {
-            return Err(StepError::Solver {
-                pair: self.contact_of_error(&source),
-                source,
-            });
-        }
-        // Pushes add up along chains of overlapping bodies; no body is moved faster than one
-        // contact may push.
+        Ok(solved)
+    }
+
+    /// The position pass's answer as pseudo-velocities. Pushes add up along chains of
+    /// overlapping bodies; no body is moved faster than one contact may push.
+    fn limit_pseudo_velocities(&mut self) {
+        self.pseudo_velocities
+            .clone_from(&self.position_pass.problem.bodies);
         let limit = self.settings.contact.max_depenetration_speed;
         for (body, solid) in self.pseudo_velocities.iter_mut().zip(&self.geometry) {
             let reach = solid.outline.size();
@@ -471,42 +451,6 @@ impl World {
                 body.linear_velocity *= limit / speed;
                 body.angular_velocity *= limit / speed;
             }
-        }
-        Ok(())
-    }
-
-    /// The position pass's solve, on `problem` as [`World::correct_penetration`] set it up.
-    fn solve_position_pass(&mut self) -> Result<(), LcpError> {
-        let problem = &mut self.problem;
-        match &self.settings.solver {
-            Solver::Pgs(params) => {
-                let from_rest = PgsParams {
-                    warm_start: WarmStart::Off,
-                    record: Record::Nothing,
-                    iterations: if self.gravity == Vector3::zeros() {
-                        params.iterations
-                    } else {
-                        params.iterations.min(CORRECTION_SWEEPS_UNDER_GRAVITY)
-                    },
-                    ..*params
-                };
-                // Then, under gravity, one pass from the ground up holding each contact's lower
-                // body still: pseudo-velocities carry no momentum, so nothing is lost by it, and
-                // a stack whatever its height or mass ratio (1 kg under 1000 kg) is pushed apart
-                // at once, where sweeps from rest carry a push up one level per sweep. Without
-                // gravity there is no ground to go up from.
-                // The velocity solve's responses and factors serve again: same rows, same masses.
-                pgs::resolve_in_place(problem, &mut self.pgs_workspace, &from_rest)?;
-                if self.gravity != Vector3::zeros() {
-                    pgs::shock_propagation(
-                        problem,
-                        &mut self.pgs_workspace,
-                        self.contact_set.shock_order(&self.gravity),
-                    )?;
-                }
-                Ok(())
-            }
-            Solver::Direct(params) => direct::solve(problem, params).map(drop),
         }
     }
 
@@ -562,7 +506,133 @@ impl World {
     }
 }
 
-/// A solve's answer — velocities and impulses — kept to be put back; buffers reused.
+/// The velocity solve's borrows of the world, apart from the position pass's.
+struct VelocitySolve<'a> {
+    problem: &'a mut Problem<ContactProjection>,
+    workspace: &'a mut PgsWorkspace,
+    set_aside: &'a mut SolvedState,
+    bodies: &'a [Body],
+    settings: &'a WorldSettings,
+    /// [`ContactSet::shock_order`], when the shock pass runs.
+    order: &'a [(usize, Support)],
+}
+
+impl VelocitySolve<'_> {
+    /// PGS (warm-started by the caller) and, when asked, the guarded shock pass; or the direct
+    /// solver, whose report it returns.
+    fn run(&mut self) -> Result<Option<DirectInfo>, LcpError> {
+        match &self.settings.solver {
+            Solver::Pgs(params) => {
+                pgs::solve_in_place(self.problem, self.workspace, params)?;
+                if self.settings.shock_propagation {
+                    self.guarded_shock_pass()?;
+                }
+                Ok(None)
+            }
+            Solver::Direct(params) => direct::solve(self.problem, params).map(Some),
+        }
+    }
+
+    /// The shock pass after the velocity solve, kept only if it leaves the bodies with no more
+    /// kinetic energy than the solve did: held still, a supporting body does not feel the
+    /// pass's reactions, which can push its load up as if off a fixed floor; undone then, the
+    /// pass can only take energy out (a falling stack stopped on its base).
+    fn guarded_shock_pass(&mut self) -> Result<(), LcpError> {
+        let energy = |bodies: &[Body], solved: &[SolverBody]| -> f64 {
+            bodies
+                .iter()
+                .zip(solved)
+                .filter(|(b, _)| b.is_dynamic())
+                .map(|(b, s)| b.kinetic_energy_at(&s.linear_velocity, &s.angular_velocity))
+                .sum()
+        };
+        let before = energy(self.bodies, &self.problem.bodies);
+        self.set_aside.save(self.problem);
+        pgs::shock_propagation(self.problem, self.workspace, self.order)?;
+        if energy(self.bodies, &self.problem.bodies) > before {
+            self.set_aside.restore(self.problem);
+        }
+        Ok(())
+    }
+}
+
+/// The position pass of split impulses, on its own copy of the velocity problem: the same
+/// rows, blocks and masses, the bodies at rest, the pushes the velocity solve left as targets.
+/// Solved from rest with the same solver (then, under gravity, a ground-up pass), it gives
+/// pseudo-velocities that move positions only (see [`World::step`]). Sharing nothing with the
+/// velocity solve, it can run beside it; copying costs less than the pass it lets run there.
+#[derive(Debug, Clone, Default)]
+struct PositionPass {
+    problem: Problem<ContactProjection>,
+    workspace: PgsWorkspace,
+}
+
+impl PositionPass {
+    /// Copies `velocity`'s problem as built, with `biases` (one per row) as the targets.
+    fn set_up(&mut self, velocity: &Problem<ContactProjection>, biases: &[f64]) {
+        let problem = &mut self.problem;
+        problem.bodies.clear();
+        problem
+            .bodies
+            .extend(velocity.bodies.iter().map(|body| SolverBody {
+                linear_velocity: Vector3::zeros(),
+                angular_velocity: Vector3::zeros(),
+                ..*body
+            }));
+        problem.rows.clear();
+        problem
+            .rows
+            .extend(velocity.rows.iter().zip(biases).map(|(row, &bias)| Row {
+                target: bias,
+                impulse: 0.0,
+                ..*row
+            }));
+        problem.blocks.clone_from(&velocity.blocks);
+    }
+
+    /// Solves the pass; `order` is [`ContactSet::shock_order`] under gravity.
+    fn solve(
+        &mut self,
+        solver: &Solver,
+        under_gravity: bool,
+        order: &[(usize, Support)],
+    ) -> Result<(), LcpError> {
+        match solver {
+            Solver::Pgs(params) => {
+                let from_rest = PgsParams {
+                    warm_start: WarmStart::Off,
+                    record: Record::Nothing,
+                    iterations: if under_gravity {
+                        params.iterations.min(CORRECTION_SWEEPS_UNDER_GRAVITY)
+                    } else {
+                        params.iterations
+                    },
+                    ..*params
+                };
+                pgs::solve_in_place(&mut self.problem, &mut self.workspace, &from_rest)?;
+                // Then, under gravity, one pass from the ground up holding each contact's lower
+                // body still: pseudo-velocities carry no momentum, so nothing is lost by it, and
+                // a stack whatever its height or mass ratio (1 kg under 1000 kg) is pushed apart
+                // at once, where sweeps from rest carry a push up one level per sweep. Without
+                // gravity there is no ground to go up from.
+                if under_gravity {
+                    pgs::shock_propagation(&mut self.problem, &mut self.workspace, order)?;
+                }
+                Ok(())
+            }
+            Solver::Direct(params) => direct::solve(&mut self.problem, params).map(drop),
+        }
+    }
+}
+
+/// Rows from which the position pass runs on a helper thread beside the velocity solve. A
+/// helper asleep takes 0.2–1 ms to start on a virtual machine of two cores (see
+/// [`parallel`]); below this a problem's velocity solve may end first, and the step would
+/// wait for the helper.
+const POSITION_PASS_BESIDE_ROWS: usize = 1024;
+
+/// A solve's answer — velocities and impulses — kept to be put back (before the shock pass);
+/// buffers reused.
 #[derive(Debug, Clone, Default)]
 struct SolvedState {
     bodies: Vec<SolverBody>,
