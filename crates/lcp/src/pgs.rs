@@ -208,7 +208,7 @@ pub fn solve_in_place<P: Projection>(
 
 /// [`solve_in_place`] for a problem last solved with `workspace` whose rows' Jacobians, blocks
 /// and bodies' masses have not changed since — only targets, impulses and velocities may have
-/// (a split-impulse position pass on the velocity problem, as `tatami-world` runs it): the
+/// (a split-impulse position pass run in place on the velocity problem): the
 /// rows' responses `M⁻¹Jᵀ` and the blocks' factors of the last solve are reused, which gives
 /// the same answer to the bit as computing them again. A workspace that did not solve a
 /// problem of this shape gets them computed.
