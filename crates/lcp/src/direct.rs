@@ -66,13 +66,19 @@ impl Default for DirectParams {
 
 /// Bytes of dense storage a direct solve of `rows` contact rows and `variables` standard-LCP
 /// variables allocates at most: `A` (rows²); the standard matrix, its regularised copy and
-/// Lemke's scaled copy (3 × variables²); and Lemke's tableau (variables × (2·variables + 2)),
-/// in f64. Saturates instead of overflowing.
+/// Lemke's scaled copy (3 × variables²); Lemke's tableau (variables × (2·variables + 2)); and,
+/// while the tableau is rebuilt from the data for its basis, the basis and its LU factors
+/// (2 × variables²) with the data's and the rebuilt tableau's columns (2 × variables ×
+/// (2·variables + 2)); in f64. Saturates instead of overflowing.
 pub fn dense_bytes(rows: usize, variables: usize) -> usize {
+    let square = variables.saturating_mul(variables);
+    let tableau = variables.saturating_mul(variables.saturating_mul(2).saturating_add(2));
     let cells = rows
         .saturating_mul(rows)
-        .saturating_add(variables.saturating_mul(variables).saturating_mul(3))
-        .saturating_add(variables.saturating_mul(variables.saturating_mul(2).saturating_add(2)));
+        .saturating_add(square.saturating_mul(3))
+        .saturating_add(tableau)
+        .saturating_add(square.saturating_mul(2))
+        .saturating_add(tableau.saturating_mul(2));
     cells.saturating_mul(std::mem::size_of::<f64>())
 }
 

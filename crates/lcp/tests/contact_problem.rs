@@ -433,10 +433,12 @@ proptest! {
 
 /// The cube's 12 rows become 28 standard variables (1 + 3 + 3 per corner); a budget one byte
 /// short of their dense storage refuses the solve before allocating, naming the unknowns, and the
-/// exact budget solves it.
+/// exact budget solves it. The storage: `A`, three standard-size matrices, the tableau, and
+/// for a rebuild of the tableau a basis with its factors and two tableau-wide blocks.
 #[test]
 fn a_direct_problem_over_the_memory_budget_is_refused() {
-    let bytes = 8 * (12 * 12 + 3 * 28 * 28 + 28 * (2 * 28 + 2));
+    let (square, tableau) = (28 * 28, 28 * (2 * 28 + 2));
+    let bytes = 8 * (12 * 12 + 3 * square + tableau + 2 * square + 2 * tableau);
     assert_eq!(direct::dense_bytes(12, 28), bytes);
     let mut problem = cube_on_ground(Vector3::new(0.0, 0.0, -G * DT), 0.5);
     let tight = direct::DirectParams {
