@@ -11,8 +11,9 @@
 //! helper has started, so a short loop waits for the slowest wake: callers keep those on their
 //! own thread). [`for_each_beside`] goes further: the helpers start on the items while the
 //! caller does other work first (collision's broad phase), so their wake-up is hidden behind
-//! it; [`join_beside`] does the same for one job (the position pass beside the velocity solve). Each item is a pure function of its own data, so which thread does it changes nothing in
-//! the result.
+//! it; [`join_beside`] does the same for one job (the position pass beside the velocity solve).
+//! Each item is a pure function of its own data, so which thread does it changes nothing in the
+//! result.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Mutex, PoisonError};

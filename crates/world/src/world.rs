@@ -418,10 +418,12 @@ impl World {
         } else {
             let velocity_result = velocity.run();
             let solved = Instant::now();
-            (
-                (velocity_result, solved),
-                position.solve(solver, under_gravity, order),
-            )
+            // A failed velocity solve ends the step; its pushes are not needed then.
+            let position_result = match velocity_result {
+                Ok(_) => position.solve(solver, under_gravity, order),
+                Err(_) => Ok(()),
+            };
+            ((velocity_result, solved), position_result)
         };
         let name = |world: &Self, source: LcpError| StepError::Solver {
             pair: world.contact_of_error(&source),
