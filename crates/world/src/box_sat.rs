@@ -16,6 +16,8 @@ use parry3d_f64::math::{Pose, Vector};
 use parry3d_f64::query::sat as parry_sat;
 use parry3d_f64::shape::Cuboid;
 
+use crate::apart::FaceGap;
+
 /// Relative gap, as a fraction of the pair's size (`|t|₁ + |h₁|₁ + |h₂|₁`), within which two
 /// axes' quick separations count as a tie to be settled by parry's exact arithmetic. Both
 /// evaluations sum at most seven terms bounded by that size, so each is within about 1e-15 of
@@ -25,15 +27,52 @@ const CLOSE: f64 = 1e-12;
 /// The separating axis of two boxes (in box 1's frame, pointing out of box 1) that parry's SAT
 /// finds: the face normals of either box and the edge–edge axes, the one of largest
 /// separation, without building the manifold's contact points, which [`crate::support`]
-/// replaces with the full support polygon. `None` beyond `prediction`.
+/// replaces with the full support polygon. Beyond `prediction`, an error with the face normal
+/// that separates the boxes most when one does by more than `prediction` (see [`crate::apart`]).
 pub(crate) fn cuboid_normal(
     box1: &Cuboid,
     box2: &Cuboid,
     pos12: &Pose,
     prediction: f64,
-) -> Option<Vector> {
+) -> Result<Vector, Option<FaceGap>> {
     quick_normal(box1, box2, pos12, prediction)
         .unwrap_or_else(|| parry_normal(box1, box2, pos12, prediction))
+        .ok_or_else(|| face_gap(box1, box2, pos12, prediction))
+}
+
+/// The face normal of either box separating the pair most, if it does by more than
+/// `prediction`. parry answers `None` for any such pair: its face groups report the best face's
+/// separation, or one at least as large along a blend of separating faces.
+fn face_gap(box1: &Cuboid, box2: &Cuboid, pos12: &Pose, prediction: f64) -> Option<FaceGap> {
+    let (separations, _) = face_separations(box1, box2, pos12);
+    let (best, separation) = (0..6)
+        .map(|k| (k, separations[k]))
+        .reduce(|best, next| if next.1 > best.1 { next } else { best })?;
+    (separation > prediction).then_some(FaceGap {
+        separation,
+        on_first: best < 3,
+    })
+}
+
+/// The separations along box 1's face normals, then box 2's, from the columns of the relative
+/// rotation; with those columns (box 2's axes in box 1's frame, as parry's edge test computes
+/// them).
+fn face_separations(box1: &Cuboid, box2: &Cuboid, pos12: &Pose) -> ([f64; 6], [Vector; 3]) {
+    let (h1, h2, t) = (box1.half_extents, box2.half_extents, pos12.translation);
+    let c = [
+        pos12.rotation * Vector::X,
+        pos12.rotation * Vector::Y,
+        pos12.rotation * Vector::Z,
+    ];
+    let reach1 = |a: Vector| h1.dot(a.abs());
+    let reach2 = |a: Vector| box2_reach(h2, &c, a);
+    let mut separations = [0.0; 6];
+    for i in 0..3 {
+        let axis = Vector::from_array(std::array::from_fn(|k| f64::from(u8::from(k == i))));
+        separations[i] = t.dot(axis).abs() - h1[i] - reach2(axis);
+        separations[3 + i] = t.dot(c[i]).abs() - reach1(c[i]) - h2[i];
+    }
+    (separations, c)
 }
 
 /// parry's three calls, in the order that lets most pairs whose bounding boxes overlap stop at
@@ -66,23 +105,13 @@ fn quick_normal(
     prediction: f64,
 ) -> Option<Option<Vector>> {
     let (h1, h2, t) = (box1.half_extents, box2.half_extents, pos12.translation);
-    // Box 2's axes in box 1's frame, as parry's edge test computes them.
-    let c = [
-        pos12.rotation * Vector::X,
-        pos12.rotation * Vector::Y,
-        pos12.rotation * Vector::Z,
-    ];
+    let (faces, c) = face_separations(box1, box2, pos12);
     let reach1 = |a: Vector| h1.dot(a.abs());
-    let reach2 =
-        |a: Vector| h2.x * c[0].dot(a).abs() + h2.y * c[1].dot(a).abs() + h2.z * c[2].dot(a).abs();
+    let reach2 = |a: Vector| box2_reach(h2, &c, a);
     let close = CLOSE * (t.abs().element_sum() + h1.element_sum() + h2.element_sum());
     // parry's order: box 1's faces, box 2's faces, then the edge pairs.
     let mut separations = [f64::NEG_INFINITY; 15];
-    for i in 0..3 {
-        let axis = Vector::from_array(std::array::from_fn(|k| f64::from(u8::from(k == i))));
-        separations[i] = t.dot(axis).abs() - h1[i] - reach2(axis);
-        separations[3 + i] = t.dot(c[i]).abs() - reach1(c[i]) - h2[i];
-    }
+    separations[..6].copy_from_slice(&faces);
     // Apart: parry answers `None` as soon as one box's face normals separate the pair by more
     // than `prediction` — without a blend, which it makes of two or more normals separating
     // by zero or more, so a box with one at most that might is decided here.
@@ -151,6 +180,12 @@ fn quick_normal(
     Some((winner.0 <= prediction).then_some(winner.1))
 }
 
+/// How far box 2 (half extents `h2`, axes `c` in box 1's frame) reaches along axis `a` from its
+/// centre.
+fn box2_reach(h2: Vector, c: &[Vector; 3], a: Vector) -> f64 {
+    h2.x * c[0].dot(a).abs() + h2.y * c[1].dot(a).abs() + h2.z * c[2].dot(a).abs()
+}
+
 /// The nine edge–edge axes of parry's test (box 1's axes crossed with box 2's, `c`), in its
 /// order, each with its length; `None` where parry skips one (parallel edges).
 fn edge_axes(c: &[Vector; 3]) -> [Option<(Vector, f64)>; 9] {
@@ -211,7 +246,15 @@ mod tests {
             let prediction = 0.005 * scale;
             let expected = parry_normal(&box1, &box2, &pos12, prediction);
             let got = cuboid_normal(&box1, &box2, &pos12, prediction);
-            assert_eq!(bits(got), bits(expected), "case {case}");
+            assert_eq!(bits(got.ok()), bits(expected), "case {case}");
+            // A gap is reported exactly when a face normal separates by more than `prediction`.
+            let (faces, _) = face_separations(&box1, &box2, &pos12);
+            let widest = faces.into_iter().fold(f64::NEG_INFINITY, f64::max);
+            let gap = got.err().flatten();
+            assert_eq!(
+                gap.map(|g| g.separation),
+                (widest > prediction).then_some(widest)
+            );
             match quick_normal(&box1, &box2, &pos12, prediction) {
                 Some(Some(_)) => quick += 1,
                 Some(None) => apart += 1,

@@ -1,12 +1,14 @@
 //! Collision: broad phase, parry's contact normal, support polygons with their feature ids,
 //! written into the persistent [`ContactSet`]. Plain data in, the set out, so it can be run and
 //! timed alone; a pair neither of whose bodies moved keeps its contact (see
-//! [`ContactSet::meet`]).
+//! [`ContactSet::refresh`]), and a pair found apart along a face normal is not tested again
+//! while its bodies could not have closed the gap ([`crate::apart`]).
 
 use nalgebra::Vector3;
 use tatami_contact::{Contact, Material};
 use tatami_lcp::BodyId;
 
+use crate::apart::{Apart, Placement};
 use crate::body::Body;
 use crate::broad_phase::SweepAndPrune;
 use crate::contact_set::{Computed, ContactSet};
@@ -23,13 +25,15 @@ pub(crate) struct CollisionWorkspace {
     pairs: Vec<(usize, usize)>,
     /// Each body's pose, as parry takes it.
     poses: Vec<parry3d_f64::math::Pose>,
-    /// Pairs the contact set does not hold yet, each with its contact once computed: kept
-    /// between steps, as a pile's 2,000 new pairs a step take over a megabyte, which fresh
-    /// allocations mapped page by page every step (page faults were 0.3% of the step).
-    new: Vec<((usize, usize), Option<Computed>)>,
+    /// Pairs the contact set does not hold yet, each with its contact once computed (or why
+    /// not): kept between steps, as a pile's 2,000 new pairs a step take over a megabyte, which
+    /// fresh allocations mapped page by page every step (page faults were 0.3% of the step).
+    new: Vec<((usize, usize), Found)>,
     /// Contacts the last pass computed (moved or new pairs).
     last_computed: usize,
     features: Features,
+    /// Where each body is, for the tests of motion of the pairs held and kept apart.
+    placements: Vec<Placement>,
 }
 
 /// Scratch for the touching features of one pair's two bodies.
@@ -50,6 +54,22 @@ const PARALLEL_PAIRS: usize = 32;
 /// 1,500 and more a step; the 210-cube pyramid, a few dozen, would wait longer for a helper to
 /// wake than the pairs take.
 const PARALLEL_PASS: usize = 256;
+
+/// What collision found of a pair.
+#[derive(Debug, Clone)]
+#[expect(
+    clippy::large_enum_variant,
+    reason = "held in a list reused across steps; a box would allocate for every contact"
+)]
+enum Found {
+    /// Its contact.
+    Touching(Computed),
+    /// Apart along a face normal: kept apart, untested, until its bodies could have closed the
+    /// gap ([`ContactSet::keep_apart`]).
+    Apart(Apart),
+    /// Apart with nothing to keep, or not found yet.
+    Nothing,
+}
 
 /// A body's collision data, built once when the body is added.
 #[derive(Debug, Clone)]
@@ -79,6 +99,7 @@ pub(crate) fn detect(
         new,
         last_computed,
         features,
+        placements,
     } = workspace;
     poses.clear();
     poses.extend(
@@ -87,7 +108,7 @@ pub(crate) fn detect(
             .map(|b| parry_bridge::pose(&b.position(), &b.rotation)),
     );
     let poses = &*poses;
-    let compute = |features: &mut Features, pair: (usize, usize)| {
+    let find = |features: &mut Features, pair: (usize, usize)| {
         contact_of(
             bodies,
             geometry,
@@ -98,9 +119,20 @@ pub(crate) fn detect(
             features,
         )
     };
-    let now = |i: usize| {
-        let body = &bodies[i];
-        ((body.centre, body.rotation), geometry[i].outline.size())
+    placements.clear();
+    placements.extend(bodies.iter().zip(geometry).map(|(body, g)| {
+        let size = g.outline.size();
+        Placement {
+            pose: (body.centre, body.rotation),
+            size,
+            reach: size + body.com_offset().norm(),
+        }
+    }));
+    let placements = &*placements;
+    let now = |i: usize| placements[i];
+    let compute = |features: &mut Features, pair: (usize, usize)| match find(features, pair) {
+        Found::Touching(computed) => Some(computed),
+        Found::Apart(_) | Found::Nothing => None,
     };
     // Stages: the pairs the set holds are brought up to date (recomputed in place where a body
     // moved) while the broad phase finds the overlapping pairs and meets them, on every core
@@ -124,12 +156,12 @@ pub(crate) fn detect(
             pairs
                 .iter()
                 .filter(|&&pair| !meeting.meet(pair))
-                .map(|&pair| (pair, None)),
+                .map(|&pair| (pair, Found::Nothing)),
         );
     });
     *last_computed = recomputed + new.len();
     let compute_into = |features: &mut Features, (pair, out): &mut ((usize, usize), _)| {
-        *out = compute(features, *pair);
+        *out = find(features, *pair);
     };
     if new.len() >= PARALLEL_PAIRS {
         parallel::for_each(new, Features::default, compute_into);
@@ -138,16 +170,19 @@ pub(crate) fn detect(
             compute_into(features, slot);
         }
     }
-    for (_, computed) in new.drain(..) {
-        if let Some(computed) = computed {
-            set.insert(computed);
+    for (pair, found) in new.drain(..) {
+        match found {
+            Found::Touching(computed) => set.insert(computed),
+            Found::Apart(apart) => set.keep_apart(pair, apart),
+            Found::Nothing => {}
         }
     }
     set.end(gravity);
 }
 
 /// The contact of pair `(i, j)` at the bodies' current poses, with its feature ids and the poses
-/// it was computed at; `None` when the bodies are farther apart than `margin`.
+/// it was computed at; or, when the bodies are farther apart than `margin`, the face normal that
+/// shows it if one does.
 fn contact_of(
     bodies: &[Body],
     geometry: &[BodyGeometry],
@@ -156,15 +191,25 @@ fn contact_of(
     margin: f64,
     feature_angle: f64,
     features: &mut Features,
-) -> Option<Computed> {
+) -> Found {
     let (a, b) = (&bodies[i], &bodies[j]);
-    let normal = parry_bridge::contact_normal(
+    let found_at = [(a.centre, a.rotation), (b.centre, b.rotation)];
+    let normal = match parry_bridge::contact_normal(
         &geometry[i].collider,
         &poses[i],
         &geometry[j].collider,
         &poses[j],
         margin,
-    )?;
+    ) {
+        Ok(normal) => normal,
+        Err(Some(gap)) => {
+            return Found::Apart(Apart {
+                gap,
+                poses: found_at,
+            });
+        }
+        Err(None) => return Found::Nothing,
+    };
     geometry[i].outline.feature(
         &a.position(),
         &a.rotation,
@@ -179,7 +224,9 @@ fn contact_of(
         feature_angle,
         &mut features.b,
     );
-    let s = support(&features.a, &features.b, &normal)?;
+    let Some(s) = support(&features.a, &features.b, &normal) else {
+        return Found::Nothing;
+    };
     let contact = Contact {
         body_a: BodyId(i),
         body_b: BodyId(j),
@@ -190,11 +237,7 @@ fn contact_of(
         depths: s.depths,
         material: combine(a, b),
     };
-    Some((
-        contact,
-        s.features,
-        [(a.centre, a.rotation), (b.centre, b.rotation)],
-    ))
+    Found::Touching((contact, s.features, found_at))
 }
 
 /// The pair's material: the average of the two bodies' coefficients.
@@ -205,5 +248,80 @@ fn combine(a: &Body, b: &Body) -> Material {
         static_friction: average(a.static_friction, b.static_friction),
         kinetic_friction: average(a.kinetic_friction, b.kinetic_friction),
         restitution: average(a.restitution, b.restitution),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dropped::{Random, mixed_shape};
+    use crate::{BodyDesc, Shape, World};
+    use nalgebra::UnitQuaternion;
+    use std::collections::HashSet;
+
+    /// 48 mixed shapes (boxes, balls, cylinders, hulls) dropped in a heap: after every step's
+    /// collision pass, every pair that a fresh test finds touching is in the contact set — the
+    /// pairs kept apart without a test (see [`crate::apart`]) hide none — while the set keeps
+    /// pairs apart on most steps.
+    #[test]
+    fn no_touching_pair_is_kept_apart() {
+        let mut random = Random::new(11);
+        let mut builder = World::builder()
+            .body(BodyDesc::fixed(Shape::cuboid([8.0, 8.0, 1.0])).position([0.0, 0.0, -0.5]));
+        for k in 0..48 {
+            let position = [
+                random.between(-1.5, 1.5),
+                random.between(-1.5, 1.5),
+                0.5 + 0.4 * k as f64,
+            ];
+            let turn = UnitQuaternion::from_euler_angles(
+                random.between(0.0, 3.0),
+                random.between(0.0, 3.0),
+                random.between(0.0, 3.0),
+            );
+            builder = builder.body(
+                BodyDesc::dynamic(mixed_shape(&mut random, k))
+                    .position(position)
+                    .rotation(turn),
+            );
+        }
+        let mut world = builder.build().expect("a valid scene");
+        let (margin, angle) = (world.settings.contact_margin, world.settings.feature_angle);
+        let mut kept_apart = 0;
+        for step in 0..300 {
+            let dt = 1.0 / 60.0;
+            world.prepare_step(dt).expect("collision");
+            kept_apart += world.contact_set.kept_apart();
+            let held: HashSet<(usize, usize)> =
+                world.contacts().map(|c| (c.body_a.0, c.body_b.0)).collect();
+            let poses: Vec<_> = world
+                .bodies
+                .iter()
+                .map(|b| parry_bridge::pose(&b.position(), &b.rotation))
+                .collect();
+            let mut features = Features::default();
+            for i in 0..world.bodies.len() {
+                for j in i + 1..world.bodies.len() {
+                    if !world.bodies[i].is_dynamic() && !world.bodies[j].is_dynamic() {
+                        continue;
+                    }
+                    let found = contact_of(
+                        &world.bodies,
+                        &world.geometry,
+                        &poses,
+                        (i, j),
+                        margin,
+                        angle,
+                        &mut features,
+                    );
+                    assert!(
+                        !matches!(found, Found::Touching(_)) || held.contains(&(i, j)),
+                        "step {step}: pair ({i}, {j}) touches but is not in the set"
+                    );
+                }
+            }
+            world.step(dt).expect("a step");
+        }
+        assert!(kept_apart >= 1_000, "{kept_apart} pairs kept apart in all");
     }
 }

@@ -7,6 +7,8 @@
 //! a pass, [`refresh`](ContactSet::refresh)es the pairs it holds (keeping the contact of one
 //! that has not moved, recomputing the others in place, on every core) while the broad phase
 //! [`meet`](Meeting::meet)s each overlapping pair, [`insert`](ContactSet::insert)s new ones,
+//! [`keep_apart`](ContactSet::keep_apart)s the new pairs found apart along a face normal (they
+//! are met, untested, while their bodies could not have closed the gap: [`crate::apart`]),
 //! and [`end`](ContactSet::end)s the pass, which is where pairs no longer touching or no longer
 //! met are dropped; rows are built in set order, each pair
 //! recording its blocks; [`warm_start`](ContactSet::warm_start) writes into every row the impulse of the row
@@ -31,6 +33,7 @@ use tatami_contact::{Contact, ContactModel, ContactProjection};
 use tatami_lcp::pgs::Support;
 use tatami_lcp::{Problem, Projection};
 
+use crate::apart::{Apart, Placement};
 use crate::load_estimate::LoadEstimate;
 use crate::parallel;
 use crate::support::{FeatureId, FeatureIds};
@@ -55,14 +58,30 @@ pub(crate) type Computed = (Contact, FeatureIds, [Pose; 2]);
 pub(crate) struct Meeting<'a> {
     index: &'a HashMap<(usize, usize), usize, FixedState>,
     met: &'a mut [bool],
+    apart: &'a mut HashMap<(usize, usize), (Apart, bool), FixedState>,
+    now: &'a (dyn Fn(usize) -> Placement + Sync),
+    margin: f64,
 }
 
 impl Meeting<'_> {
     /// Meets pair `(a, b)`, found overlapping by the broad phase: `true` if the set holds it
-    /// (it stays, if still touching), `false` if it is new, to be computed and
-    /// [`ContactSet::insert`]ed.
+    /// (it stays, if still touching) or holds it [apart](ContactSet::keep_apart) and its bodies
+    /// cannot have closed the gap since (it stays apart, untested); `false` if it is to be
+    /// computed, then [`ContactSet::insert`]ed or kept apart.
     pub(crate) fn meet(&mut self, pair: (usize, usize)) -> bool {
-        self.index.get(&pair).map(|&k| self.met[k] = true).is_some()
+        if let Some(&k) = self.index.get(&pair) {
+            self.met[k] = true;
+            return true;
+        }
+        match self.apart.get_mut(&pair) {
+            Some((apart, met))
+                if apart.still_apart(&(self.now)(pair.0), &(self.now)(pair.1), self.margin) =>
+            {
+                *met = true;
+                true
+            }
+            _ => false,
+        }
     }
 }
 
@@ -102,6 +121,9 @@ pub(crate) struct ContactSet {
     index: HashMap<(usize, usize), usize, FixedState>,
     /// Whether the current collision pass's broad phase met each entry's pair.
     met: Vec<bool>,
+    /// Pairs the broad phase meets that were last found apart along a face normal, each with
+    /// whether the current pass met it (see [`crate::apart`]). Hashed as `index` is.
+    apart: HashMap<(usize, usize), (Apart, bool), FixedState>,
     /// Collision settings the contacts were computed with; others invalidate them.
     computed_with: (f64, f64),
     /// Scratch: row keys of one contact.
@@ -119,6 +141,7 @@ impl ContactSet {
         if self.computed_with != (margin, feature_angle) {
             self.entries.clear();
             self.index.clear();
+            self.apart.clear();
             self.computed_with = (margin, feature_angle);
         }
         self.met.clear();
@@ -127,8 +150,8 @@ impl ContactSet {
 
     /// Brings the pairs the set holds up to date, and runs `broad_phase`, which meets the pairs
     /// now overlapping through its [`Meeting`]. A pair keeps its contact if neither body moved
-    /// by more than [`REUSE_TOLERANCE`] since it was computed (`now(body)` gives a body's pose,
-    /// and its size to scale turns), so a resting stack's pairs are computed once; the others
+    /// by more than [`REUSE_TOLERANCE`] since it was computed (`now(body)` gives where a body
+    /// is), so a resting stack's pairs are computed once; the others
     /// are recomputed in place by `compute` (from a per-thread `scratch`), and a pair it returns
     /// `None` for (no longer touching) is dropped by [`ContactSet::end`], as is a pair the broad
     /// phase did not meet.
@@ -143,14 +166,14 @@ impl ContactSet {
     pub(crate) fn refresh<S>(
         &mut self,
         on_every_core: bool,
-        now: impl Fn(usize) -> (Pose, f64) + Sync,
+        now: impl Fn(usize) -> Placement + Sync,
         scratch: fn() -> S,
         compute: impl Fn(&mut S, (usize, usize)) -> Option<Computed> + Sync,
         broad_phase: impl FnOnce(&mut Meeting<'_>),
     ) -> usize {
-        let still = |was: &Pose, (now, size): (Pose, f64)| {
-            (now.0 - was.0).norm() <= REUSE_TOLERANCE
-                && now.1.angle_to(&was.1) * size.max(1.0) <= REUSE_TOLERANCE
+        let still = |was: &Pose, now: Placement| {
+            (now.pose.0 - was.0).norm() <= REUSE_TOLERANCE
+                && now.pose.1.angle_to(&was.1) * now.size.max(1.0) <= REUSE_TOLERANCE
         };
         // Whether the entry's contact was recomputed.
         let update = |scratch: &mut S, entry: &mut Entry| -> bool {
@@ -174,6 +197,9 @@ impl ContactSet {
         let mut meeting = Meeting {
             index: &self.index,
             met: &mut self.met,
+            apart: &mut self.apart,
+            now: &now,
+            margin: self.computed_with.0,
         };
         if on_every_core {
             let recomputed = AtomicUsize::new(0);
@@ -220,9 +246,23 @@ impl ContactSet {
         self.met.push(true);
     }
 
+    /// Keeps pair `pair`, met by the broad phase and found apart, to be skipped while it stays
+    /// so (see [`Meeting::meet`]).
+    pub(crate) fn keep_apart(&mut self, pair: (usize, usize), apart: Apart) {
+        self.apart.insert(pair, (apart, true));
+    }
+
+    /// How many pairs the set keeps apart.
+    #[cfg(test)]
+    pub(crate) fn kept_apart(&self) -> usize {
+        self.apart.len()
+    }
+
     /// Ends a collision pass: drops the pairs the broad phase did not meet or that no longer
-    /// touch, and orders the rest from the highest contact to the lowest along `gravity`.
+    /// touch, and orders the rest from the highest contact to the lowest along `gravity`; drops
+    /// the pairs kept apart that it did not meet or that were found touching.
     pub(crate) fn end(&mut self, gravity: &Vector3<f64>) {
+        self.apart.retain(|_, (_, met)| std::mem::take(met));
         let mut met = self.met.iter();
         self.entries
             .retain(|e| met.next().is_some_and(|&met| met) && e.state.touching);
@@ -241,6 +281,7 @@ impl ContactSet {
     /// Forgets body `index` as [`World::remove_body`](crate::World::remove_body) removes it:
     /// drops its pairs and renumbers the bodies after it, in the pairs' contacts and keys.
     pub(crate) fn remove_body(&mut self, index: usize) {
+        self.apart.clear();
         self.entries
             .retain(|e| e.contact.body_a.0 != index && e.contact.body_b.0 != index);
         let renumber = |body: &mut tatami_lcp::BodyId| {

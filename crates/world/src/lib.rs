@@ -17,6 +17,7 @@
 //! may fall asleep in islands ([`Sleeping`], off by default) and wake on contact or any control
 //! call.
 
+mod apart;
 mod body;
 mod box_sat;
 mod broad_phase;

@@ -11,6 +11,7 @@ use parry3d_f64::query::{ContactManifold, DefaultQueryDispatcher, PersistentQuer
 use parry3d_f64::shape::{ConvexPolyhedron, Cuboid, SharedShape};
 
 use crate::HullMesh;
+use crate::apart::FaceGap;
 use crate::box_sat;
 use crate::sat::{self, Polytope};
 use crate::shape::{MassProperties, Shape};
@@ -162,18 +163,29 @@ fn polytope(hull: &ConvexPolyhedron) -> Option<Polytope> {
 /// closer than `prediction`: by the separating-axis test for two boxes (parry's) or two
 /// polytopes ([`sat`]), else from parry's contact manifold — a cylinder's rounded core (see
 /// [`ROUNDING`]) unless the other is a ball, whose exact projection is already cheap.
+///
+/// An error otherwise, with the face normal that showed two polytopes apart when one did
+/// ([`FaceGap::on_first`] meaning `a`'s face), for [`crate::apart`].
 pub(crate) fn contact_normal(
     a: &Collider,
     pose_a: &Pose,
     b: &Collider,
     pose_b: &Pose,
     prediction: f64,
-) -> Option<Vector3<f64>> {
+) -> Result<Vector3<f64>, Option<FaceGap>> {
     let (pose_a, pose_b) = (*pose_a * a.local, *pose_b * b.local);
     let pos_ba = pose_b.inverse() * pose_a;
+    // The tests below take `b` first.
+    let of_a = |gap: Option<FaceGap>| {
+        gap.map(|g| FaceGap {
+            on_first: !g.on_first,
+            ..g
+        })
+    };
     if let (Some(box_b), Some(box_a)) = (b.shape.as_cuboid(), a.shape.as_cuboid()) {
         return box_sat::cuboid_normal(box_b, box_a, &pos_ba, prediction)
-            .map(|local| from_glam(pose_b.rotation * local).normalize());
+            .map(|local| from_glam(pose_b.rotation * local).normalize())
+            .map_err(of_a);
     }
     if let (Some(polytope_b), Some(polytope_a)) = (&b.polytope, &a.polytope) {
         let q = pos_ba.rotation;
@@ -181,8 +193,9 @@ pub(crate) fn contact_normal(
             UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q.w, q.x, q.y, q.z));
         let translation = from_glam(pos_ba.translation);
         let (_, local) =
-            sat::separating_axis(polytope_b, polytope_a, &rotation, &translation, prediction)?;
-        return Some(from_glam(pose_b.rotation * to_glam(&local)).normalize());
+            sat::separating_axis(polytope_b, polytope_a, &rotation, &translation, prediction)
+                .map_err(of_a)?;
+        return Ok(from_glam(pose_b.rotation * to_glam(&local)).normalize());
     }
     let balls = a.shape.as_ball().is_some() || b.shape.as_ball().is_some();
     let (shape_a, shape_b) = (a.normal_shape(balls), b.normal_shape(balls));
@@ -196,11 +209,16 @@ pub(crate) fn contact_normal(
             &mut manifolds,
             &mut None,
         )
-        .ok()?;
-    let manifold = manifolds.iter().find(|m| !m.points.is_empty())?;
+        .map_err(|_| None)?;
+    let manifold = manifolds
+        .iter()
+        .find(|m| !m.points.is_empty())
+        .ok_or(None)?;
     let normal = from_glam(pose_b.rotation * manifold.local_n1);
     let length = normal.norm();
-    (length.is_finite() && length > 0.0).then(|| normal / length)
+    (length.is_finite() && length > 0.0)
+        .then(|| normal / length)
+        .ok_or(None)
 }
 
 fn glam_points(points: &[Point3<f64>]) -> Vec<Vector> {
@@ -458,7 +476,7 @@ pub(crate) mod tests {
             let pose_a = pose(&Point3::origin(), &turn_a);
             let centre_b = Point3::new(between(-1.0, 1.0), between(-1.0, 1.0), between(-1.0, 1.0));
             let pose_b = pose(&centre_b, &turn_b);
-            let Some(normal) = contact_normal(&a, &pose_a, &b, &pose_b, 0.0) else {
+            let Ok(normal) = contact_normal(&a, &pose_a, &b, &pose_b, 0.0) else {
                 continue;
             };
             let (sharp_a, sharp_b) = (pose_a * a.local, pose_b * b.local);

@@ -11,6 +11,8 @@
 
 use nalgebra::{UnitQuaternion, Vector3};
 
+use crate::apart::FaceGap;
+
 /// A convex polytope in its own frame.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Polytope {
@@ -97,14 +99,15 @@ fn separation_along(
 
 /// The axis (unit, in `a`'s frame, pointing out of `a`) along which `b` — placed by `rotation`
 /// and `translation` in `a`'s frame — is separated most from `a`, and that separation (negative:
-/// the least overlap). `None` as soon as some axis separates them by more than `prediction`.
+/// the least overlap). An error as soon as some axis separates them by more than `prediction`,
+/// with that axis's separation when it is a face normal (see [`crate::apart`]).
 pub(crate) fn separating_axis(
     a: &Polytope,
     b: &Polytope,
     rotation: &UnitQuaternion<f64>,
     translation: &Vector3<f64>,
     prediction: f64,
-) -> Option<(f64, Vector3<f64>)> {
+) -> Result<(f64, Vector3<f64>), Option<FaceGap>> {
     let mut best = (f64::NEG_INFINITY, Vector3::z());
     let mut consider = |separation: f64, axis: Vector3<f64>| {
         if separation > best.0 {
@@ -117,7 +120,10 @@ pub(crate) fn separating_axis(
         let in_b = rotation.inverse_transform_vector(&-n);
         let separation = -b.support(&in_b) + n.dot(translation) - d;
         if !consider(separation, *n) {
-            return None;
+            return Err(Some(FaceGap {
+                separation,
+                on_first: true,
+            }));
         }
     }
     // B's face normals in A's frame, negated: B's side of the difference A − B on the Gauss map.
@@ -125,7 +131,10 @@ pub(crate) fn separating_axis(
     for (axis, (_, e)) in b_normals.iter().zip(&b.faces) {
         let separation = -a.support(axis) + axis.dot(translation) - e;
         if !consider(separation, *axis) {
-            return None;
+            return Err(Some(FaceGap {
+                separation,
+                on_first: false,
+            }));
         }
     }
     // Which side of each of A's arcs' planes each of B's normals lies on, `sides[f · E + e]`
@@ -176,9 +185,9 @@ pub(crate) fn separating_axis(
             }
             let separation = separation_along(a, b, rotation, translation, &axis);
             if !consider(separation, axis) {
-                return None;
+                return Err(None);
             }
         }
     }
-    Some(best)
+    Ok(best)
 }
