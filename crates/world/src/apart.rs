@@ -196,6 +196,101 @@ mod tests {
         assert!(kept > found / 10, "the bound kept {kept} of {found} apart");
     }
 
+    /// A cube hovering 10 cm above a 20 m slab, turned 45° about two axes: the slab's face
+    /// shows them apart, whichever is given first, as a box and as a hull. Turning the cube
+    /// by 0.05 rad about its centre cannot close the gap (its corners move by under 5 cm), and
+    /// the bound says so, as it can only when the face is known to be the slab's: were it the
+    /// cube's, the slab's far corners would swing past it.
+    #[test]
+    fn a_turning_cube_above_a_slab_stays_apart() {
+        let corners = |half: Vector3<f64>| {
+            (0..8)
+                .map(|i: u8| {
+                    let s = |bit: u8| if i & bit == 0 { -1.0 } else { 1.0 };
+                    Point3::new(s(1) * half.x, s(2) * half.y, s(4) * half.z)
+                })
+                .collect()
+        };
+        let (slab_half, cube_half) = (Vector3::new(10.0, 10.0, 0.5), Vector3::repeat(0.5));
+        let tilt = UnitQuaternion::from_euler_angles(std::f64::consts::FRAC_PI_4, 0.6, 0.0);
+        // How far the tilted cube reaches below its centre.
+        let lowest: f64 = (0..3)
+            .map(|i| cube_half[i] * (tilt * Vector3::ith(i, 1.0)).z.abs())
+            .sum();
+        let slab_at = (Point3::new(0.0, 0.0, -0.5), UnitQuaternion::identity());
+        let cube_at = (Point3::new(1.0, 2.0, lowest + 0.1), tilt);
+        let margin = 0.01;
+        let placed = |(centre, turn): Pose, reach: f64| Placement {
+            pose: (centre, turn),
+            size: reach,
+            reach,
+        };
+        let turned = (
+            cube_at.0,
+            UnitQuaternion::from_euler_angles(0.05, 0.0, 0.0) * cube_at.1,
+        );
+        for shapes in [
+            (
+                Shape::cuboid([20.0, 20.0, 1.0]),
+                Shape::cuboid([1.0, 1.0, 1.0]),
+            ),
+            (
+                Shape::Convex {
+                    points: corners(slab_half),
+                },
+                Shape::Convex {
+                    points: corners(cube_half),
+                },
+            ),
+        ] {
+            let (slab, cube) = (
+                Collider::new(&shapes.0).expect("a slab"),
+                Collider::new(&shapes.1).expect("a cube"),
+            );
+            let (slab_reach, cube_reach) = (slab_half.norm(), cube_half.norm());
+            // The slab first, then the cube first.
+            let Err(Some(gap)) = contact_normal(
+                &slab,
+                &pose(&slab_at.0, &slab_at.1),
+                &cube,
+                &pose(&cube_at.0, &cube_at.1),
+                margin,
+            ) else {
+                panic!("apart along a face normal");
+            };
+            assert!(gap.on_first, "the slab's face");
+            assert!((gap.separation - 0.1).abs() < 1e-9, "{}", gap.separation);
+            let apart = Apart {
+                gap,
+                poses: [slab_at, cube_at],
+            };
+            assert!(apart.still_apart(
+                &placed(slab_at, slab_reach),
+                &placed(turned, cube_reach),
+                margin
+            ));
+            let Err(Some(gap)) = contact_normal(
+                &cube,
+                &pose(&cube_at.0, &cube_at.1),
+                &slab,
+                &pose(&slab_at.0, &slab_at.1),
+                margin,
+            ) else {
+                panic!("apart along a face normal");
+            };
+            assert!(!gap.on_first, "the slab's face");
+            let apart = Apart {
+                gap,
+                poses: [cube_at, slab_at],
+            };
+            assert!(apart.still_apart(
+                &placed(turned, cube_reach),
+                &placed(slab_at, slab_reach),
+                margin
+            ));
+        }
+    }
+
     /// The turn bound is above the exact angle, and within π/2 of it (`θ ≤ π sin(θ/2)`).
     #[test]
     fn the_turn_bound_is_above_the_angle() {
