@@ -114,6 +114,19 @@ impl Collider {
         }
     }
 
+    /// The face planes `(n, d)` in the shape's frame (outward unit normal, `n · x = d` on the
+    /// face) that can show it apart from another shape: a polytope's faces, a cylinder's two
+    /// caps (parry's cylinders stand along y), none for a ball.
+    fn faces(&self) -> impl Iterator<Item = (Vector3<f64>, f64)> + '_ {
+        let polytope = self.polytope.iter().flat_map(|p| p.faces().iter().copied());
+        let caps = self
+            .shape
+            .as_cylinder()
+            .into_iter()
+            .flat_map(|c| [Vector3::y(), -Vector3::y()].map(|n| (n, c.half_height)));
+        polytope.chain(caps)
+    }
+
     /// Vertices of a polyhedral shape's hull in its frame; `None` for a curved shape.
     pub(crate) fn hull_vertices(&self) -> Option<Vec<Vector3<f64>>> {
         if let Some(cuboid) = self.shape.as_cuboid() {
@@ -210,15 +223,67 @@ pub(crate) fn contact_normal(
             &mut None,
         )
         .map_err(|_| None)?;
-    let manifold = manifolds
-        .iter()
-        .find(|m| !m.points.is_empty())
-        .ok_or(None)?;
+    let Some(manifold) = manifolds.iter().find(|m| !m.points.is_empty()) else {
+        return Err(curved_gap(a, &pose_a, b, &pose_b, prediction));
+    };
     let normal = from_glam(pose_b.rotation * manifold.local_n1);
     let length = normal.norm();
     (length.is_finite() && length > 0.0)
         .then(|| normal / length)
         .ok_or(None)
+}
+
+/// Two colliders that parry's manifold found apart, one of them curved, placed by the poses of
+/// their shapes' frames: the face plane of either (a polytope's faces, a cylinder's caps) that
+/// separates them most, if by more than `prediction`; for two balls, the gap between them (the
+/// bound of [`crate::apart`] holds for it too, as their distance follows their centres).
+///
+/// Each separation is measured with the other shape's exact support function, so it is at most
+/// their distance, and parry reports a contact only closer than `prediction`: its GJK distance
+/// is never below the true one, and a cylinder's rounded core lies inside the cylinder.
+fn curved_gap(
+    a: &Collider,
+    pose_a: &Pose,
+    b: &Collider,
+    pose_b: &Pose,
+    prediction: f64,
+) -> Option<FaceGap> {
+    if let (Some(ball_a), Some(ball_b)) = (a.shape.as_ball(), b.shape.as_ball()) {
+        let gap =
+            (pose_a.translation - pose_b.translation).length() - ball_a.radius - ball_b.radius;
+        return (gap > prediction).then_some(FaceGap {
+            separation: gap,
+            on_first: true,
+        });
+    }
+    // The separation of `other` beyond `owner`'s face plane `(n, d)`.
+    let beyond =
+        |owner_pose: &Pose, other: &Collider, other_pose: &Pose, (n, d): (Vector3<f64>, f64)| {
+            let normal = owner_pose.rotation * to_glam(&n);
+            let support = other.shape.as_support_map()?;
+            let towards = other_pose.rotation.inverse() * -normal;
+            let point = other_pose.transform_point(support.local_support_point(towards));
+            Some(normal.dot(point - owner_pose.translation) - d)
+        };
+    let separations = |owner: &Collider, owner_pose: &Pose, other: &Collider, other_pose: &Pose| {
+        owner
+            .faces()
+            .filter_map(|face| beyond(owner_pose, other, other_pose, face))
+            .fold(f64::NEG_INFINITY, f64::max)
+    };
+    let (of_a, of_b) = (
+        separations(a, pose_a, b, pose_b),
+        separations(b, pose_b, a, pose_a),
+    );
+    let (separation, on_first) = if of_a >= of_b {
+        (of_a, true)
+    } else {
+        (of_b, false)
+    };
+    (separation > prediction).then_some(FaceGap {
+        separation,
+        on_first,
+    })
 }
 
 fn glam_points(points: &[Point3<f64>]) -> Vec<Vector> {

@@ -74,6 +74,11 @@ impl Polytope {
         })
     }
 
+    /// Outward unit normal `n` and offset `d` of each face (`n · x = d` on it).
+    pub(crate) fn faces(&self) -> &[(Vector3<f64>, f64)] {
+        &self.faces
+    }
+
     /// The largest of `direction · v` over the vertices.
     fn support(&self, direction: &Vector3<f64>) -> f64 {
         self.vertices
