@@ -257,47 +257,33 @@ mod tests {
                 Collider::new(&shapes.0).expect("a slab"),
                 Collider::new(&shapes.1).expect("a cube"),
             );
-            let (slab_reach, cube_reach) = (slab_half.norm(), cube_half.norm());
+            let slab_now = (&slab, slab_at, slab_at, slab_half.norm());
+            let cube_now = (&cube, cube_at, turned, cube_half.norm());
             // The slab first, then the cube first.
-            let Err(Some(gap)) = contact_normal(
-                &slab,
-                &pose(&slab_at.0, &slab_at.1),
-                &cube,
-                &pose(&cube_at.0, &cube_at.1),
-                margin,
-            ) else {
-                panic!("apart along a face normal");
-            };
-            assert!(gap.on_first, "the slab's face");
-            assert!((gap.separation - 0.1).abs() < 1e-9, "{}", gap.separation);
-            let apart = Apart {
-                gap,
-                poses: [slab_at, cube_at],
-            };
-            assert!(apart.still_apart(
-                &placed(slab_at, slab_reach),
-                &placed(turned, cube_reach),
-                margin
-            ));
-            let Err(Some(gap)) = contact_normal(
-                &cube,
-                &pose(&cube_at.0, &cube_at.1),
-                &slab,
-                &pose(&slab_at.0, &slab_at.1),
-                margin,
-            ) else {
-                panic!("apart along a face normal");
-            };
-            assert!(!gap.on_first, "the slab's face");
-            let apart = Apart {
-                gap,
-                poses: [cube_at, slab_at],
-            };
-            assert!(apart.still_apart(
-                &placed(turned, cube_reach),
-                &placed(slab_at, slab_reach),
-                margin
-            ));
+            for (slab_first, [first, second]) in
+                [(true, [slab_now, cube_now]), (false, [cube_now, slab_now])]
+            {
+                let Err(Some(gap)) = contact_normal(
+                    first.0,
+                    &pose(&first.1.0, &first.1.1),
+                    second.0,
+                    &pose(&second.1.0, &second.1.1),
+                    margin,
+                ) else {
+                    panic!("apart along a face normal");
+                };
+                assert_eq!(gap.on_first, slab_first, "the slab's face");
+                assert!((gap.separation - 0.1).abs() < 1e-9, "{}", gap.separation);
+                let apart = Apart {
+                    gap,
+                    poses: [first.1, second.1],
+                };
+                assert!(apart.still_apart(
+                    &placed(first.2, first.3),
+                    &placed(second.2, second.3),
+                    margin
+                ));
+            }
         }
     }
 
