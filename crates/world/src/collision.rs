@@ -322,6 +322,7 @@ mod tests {
             }
             world.step(dt).expect("a step");
         }
-        assert!(kept_apart >= 1_000, "{kept_apart} pairs kept apart in all");
+        // About 21 a step; half as many without the balls and cylinders kept apart.
+        assert!(kept_apart >= 4_000, "{kept_apart} pairs kept apart in all");
     }
 }
