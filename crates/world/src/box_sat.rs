@@ -35,16 +35,16 @@ pub(crate) fn cuboid_normal(
     pos12: &Pose,
     prediction: f64,
 ) -> Result<Vector, Option<FaceGap>> {
-    quick_normal(box1, box2, pos12, prediction)
+    let faces = face_separations(box1, box2, pos12);
+    quick_normal(box1, box2, pos12, prediction, &faces)
         .unwrap_or_else(|| parry_normal(box1, box2, pos12, prediction))
-        .ok_or_else(|| face_gap(box1, box2, pos12, prediction))
+        .ok_or_else(|| face_gap(&faces.0, prediction))
 }
 
 /// The face normal of either box separating the pair most, if it does by more than
 /// `prediction`. parry answers `None` for any such pair: its face groups report the best face's
 /// separation, or one at least as large along a blend of separating faces.
-fn face_gap(box1: &Cuboid, box2: &Cuboid, pos12: &Pose, prediction: f64) -> Option<FaceGap> {
-    let (separations, _) = face_separations(box1, box2, pos12);
+fn face_gap(separations: &[f64; 6], prediction: f64) -> Option<FaceGap> {
     let (best, separation) = (0..6)
         .map(|k| (k, separations[k]))
         .reduce(|best, next| if next.1 > best.1 { next } else { best })?;
@@ -97,21 +97,21 @@ fn parry_normal(box1: &Cuboid, box2: &Cuboid, pos12: &Pose, prediction: f64) -> 
 /// [`parry_normal`]'s answer, from quick separations: for a pair overlapping along all six face
 /// normals, with parry's arithmetic on the close axes only; for a pair apart along one face
 /// normal of a box and no other of it, `None`. `None` (ask parry) for any other pair,
-/// non-finite input included.
+/// non-finite input included. `faces` is [`face_separations`]'s answer for the pair.
 fn quick_normal(
     box1: &Cuboid,
     box2: &Cuboid,
     pos12: &Pose,
     prediction: f64,
+    (faces, c): &([f64; 6], [Vector; 3]),
 ) -> Option<Option<Vector>> {
     let (h1, h2, t) = (box1.half_extents, box2.half_extents, pos12.translation);
-    let (faces, c) = face_separations(box1, box2, pos12);
     let reach1 = |a: Vector| h1.dot(a.abs());
-    let reach2 = |a: Vector| box2_reach(h2, &c, a);
+    let reach2 = |a: Vector| box2_reach(h2, c, a);
     let close = CLOSE * (t.abs().element_sum() + h1.element_sum() + h2.element_sum());
     // parry's order: box 1's faces, box 2's faces, then the edge pairs.
     let mut separations = [f64::NEG_INFINITY; 15];
-    separations[..6].copy_from_slice(&faces);
+    separations[..6].copy_from_slice(faces);
     // Apart: parry answers `None` as soon as one box's face normals separate the pair by more
     // than `prediction` — without a blend, which it makes of two or more normals separating
     // by zero or more, so a box with one at most that might is decided here.
@@ -132,7 +132,7 @@ fn quick_normal(
     // division leaves it within `close` even for nearly parallel edges (|L| down to 1e-16); the
     // shortcut cₖ · L = ±(box 2's third axis)ᵢ would not, its error from the rotation's
     // orthonormality being divided by |L|.
-    let edge_axes = edge_axes(&c);
+    let edge_axes = edge_axes(c);
     for (k, axis) in edge_axes.iter().enumerate() {
         if let Some((l, norm)) = *axis {
             separations[6 + k] = (t.dot(l).abs() - reach1(l) - reach2(l)) / norm;
@@ -255,7 +255,8 @@ mod tests {
                 gap.map(|g| g.separation),
                 (widest > prediction).then_some(widest)
             );
-            match quick_normal(&box1, &box2, &pos12, prediction) {
+            let faces = face_separations(&box1, &box2, &pos12);
+            match quick_normal(&box1, &box2, &pos12, prediction, &faces) {
                 Some(Some(_)) => quick += 1,
                 Some(None) => apart += 1,
                 None => {}

@@ -59,7 +59,7 @@ pub(crate) struct Meeting<'a> {
     index: &'a HashMap<(usize, usize), usize, FixedState>,
     met: &'a mut [bool],
     apart: &'a mut HashMap<(usize, usize), (Apart, bool), FixedState>,
-    now: &'a (dyn Fn(usize) -> Placement + Sync),
+    placements: &'a [Placement],
     margin: f64,
 }
 
@@ -75,7 +75,11 @@ impl Meeting<'_> {
         }
         match self.apart.get_mut(&pair) {
             Some((apart, met))
-                if apart.still_apart(&(self.now)(pair.0), &(self.now)(pair.1), self.margin) =>
+                if apart.still_apart(
+                    &self.placements[pair.0],
+                    &self.placements[pair.1],
+                    self.margin,
+                ) =>
             {
                 *met = true;
                 true
@@ -150,8 +154,8 @@ impl ContactSet {
 
     /// Brings the pairs the set holds up to date, and runs `broad_phase`, which meets the pairs
     /// now overlapping through its [`Meeting`]. A pair keeps its contact if neither body moved
-    /// by more than [`REUSE_TOLERANCE`] since it was computed (`now(body)` gives where a body
-    /// is), so a resting stack's pairs are computed once; the others
+    /// by more than [`REUSE_TOLERANCE`] since it was computed (`placements` says where each
+    /// body is), so a resting stack's pairs are computed once; the others
     /// are recomputed in place by `compute` (from a per-thread `scratch`), and a pair it returns
     /// `None` for (no longer touching) is dropped by [`ContactSet::end`], as is a pair the broad
     /// phase did not meet.
@@ -166,7 +170,7 @@ impl ContactSet {
     pub(crate) fn refresh<S>(
         &mut self,
         on_every_core: bool,
-        now: impl Fn(usize) -> Placement + Sync,
+        placements: &[Placement],
         scratch: fn() -> S,
         compute: impl Fn(&mut S, (usize, usize)) -> Option<Computed> + Sync,
         broad_phase: impl FnOnce(&mut Meeting<'_>),
@@ -179,7 +183,7 @@ impl ContactSet {
         let update = |scratch: &mut S, entry: &mut Entry| -> bool {
             let pair = (entry.contact.body_a.0, entry.contact.body_b.0);
             let [was_a, was_b] = &entry.state.poses;
-            if still(was_a, now(pair.0)) && still(was_b, now(pair.1)) {
+            if still(was_a, placements[pair.0]) && still(was_b, placements[pair.1]) {
                 entry.state.touching = true;
                 return false;
             }
@@ -198,7 +202,7 @@ impl ContactSet {
             index: &self.index,
             met: &mut self.met,
             apart: &mut self.apart,
-            now: &now,
+            placements,
             margin: self.computed_with.0,
         };
         if on_every_core {

@@ -177,8 +177,9 @@ fn polytope(hull: &ConvexPolyhedron) -> Option<Polytope> {
 /// polytopes ([`sat`]), else from parry's contact manifold — a cylinder's rounded core (see
 /// [`ROUNDING`]) unless the other is a ball, whose exact projection is already cheap.
 ///
-/// An error otherwise, with the face normal that showed two polytopes apart when one did
-/// ([`FaceGap::on_first`] meaning `a`'s face), for [`crate::apart`].
+/// An error otherwise, with what showed the pair apart when something did — a face normal of
+/// either, a cylinder's cap, or two balls' gap ([`FaceGap::on_first`] meaning `a`'s) — for
+/// [`crate::apart`].
 pub(crate) fn contact_normal(
     a: &Collider,
     pose_a: &Pose,
