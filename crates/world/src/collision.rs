@@ -14,7 +14,7 @@ use crate::broad_phase::SweepAndPrune;
 use crate::contact_set::{Computed, ContactSet};
 use crate::parallel;
 use crate::parry_bridge::{self, Collider};
-use crate::support::{FeaturePoint, Outline, support};
+use crate::support::{FeatureAngle, FeaturePoint, Outline, support};
 
 /// Reused buffers of the collision stage.
 #[derive(Debug, Default, Clone)]
@@ -90,6 +90,7 @@ pub(crate) fn detect(
     set: &mut ContactSet,
 ) {
     set.begin(margin, feature_angle);
+    let feature_angle = FeatureAngle::new(feature_angle);
     let CollisionWorkspace {
         boxes,
         is_static,
@@ -108,15 +109,16 @@ pub(crate) fn detect(
             .map(|b| parry_bridge::pose(&b.position(), &b.rotation)),
     );
     let poses = &*poses;
-    let find = |features: &mut Features, pair: (usize, usize)| {
+    let find = |features: &mut Features, pair: (usize, usize), depths: Vec<f64>| {
         contact_of(
             bodies,
             geometry,
             poses,
             pair,
             margin,
-            feature_angle,
+            &feature_angle,
             features,
+            depths,
         )
     };
     placements.clear();
@@ -129,7 +131,9 @@ pub(crate) fn detect(
         }
     }));
     let placements = &*placements;
-    let compute = |features: &mut Features, pair: (usize, usize)| match find(features, pair) {
+    let compute = |features: &mut Features, pair: (usize, usize), depths: Vec<f64>| match find(
+        features, pair, depths,
+    ) {
         Found::Touching(computed) => Some(computed),
         Found::Apart(_) | Found::Nothing => None,
     };
@@ -166,7 +170,7 @@ pub(crate) fn detect(
     );
     *last_computed = recomputed + new.len();
     let compute_into = |features: &mut Features, (pair, out): &mut ((usize, usize), _)| {
-        *out = find(features, *pair);
+        *out = find(features, *pair, Vec::new());
     };
     if new.len() >= PARALLEL_PAIRS {
         parallel::for_each(new, Features::default, compute_into);
@@ -187,15 +191,20 @@ pub(crate) fn detect(
 
 /// The contact of pair `(i, j)` at the bodies' current poses, with its feature ids and the poses
 /// it was computed at; or, when the bodies are farther apart than `margin`, the face normal that
-/// shows it if one does.
+/// shows it if one does. The contact's depths go into `depths` (see [`support`]).
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the pass's read-only inputs, the thread's scratch and the recycled buffer"
+)]
 fn contact_of(
     bodies: &[Body],
     geometry: &[BodyGeometry],
     poses: &[parry3d_f64::math::Pose],
     (i, j): (usize, usize),
     margin: f64,
-    feature_angle: f64,
+    feature_angle: &FeatureAngle,
     features: &mut Features,
+    depths: Vec<f64>,
 ) -> Found {
     let (a, b) = (&bodies[i], &bodies[j]);
     let found_at = [(a.centre, a.rotation), (b.centre, b.rotation)];
@@ -229,9 +238,12 @@ fn contact_of(
         feature_angle,
         &mut features.b,
     );
-    let Some(s) = support(&features.a, &features.b, &normal) else {
+    let Some(s) = support(&features.a, &features.b, &normal, depths) else {
         return Found::Nothing;
     };
+    // The polygon's mean distance from its centroid (the face model's `r̄`), kept with it: computed
+    // here, on every core, instead of where the rows are built, on one.
+    s.polygon.centroid_mean_distance();
     let contact = Contact {
         body_a: BodyId(i),
         body_b: BodyId(j),
@@ -291,7 +303,8 @@ mod tests {
             );
         }
         let mut world = builder.build().expect("a valid scene");
-        let (margin, angle) = (world.settings.contact_margin, world.settings.feature_angle);
+        let margin = world.settings.contact_margin;
+        let angle = FeatureAngle::new(world.settings.feature_angle);
         let mut kept_apart = 0;
         for step in 0..300 {
             let dt = 1.0 / 60.0;
@@ -316,8 +329,9 @@ mod tests {
                         &poses,
                         (i, j),
                         margin,
-                        angle,
+                        &angle,
                         &mut features,
+                        Vec::new(),
                     );
                     assert!(
                         !matches!(found, Found::Touching(_)) || held.contains(&(i, j)),

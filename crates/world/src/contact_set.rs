@@ -22,11 +22,8 @@
 //! gravity, so a stack's weight reaches its base within one sweep instead of one level per sweep
 //! (bottom-up lowered the first step's error of a 10-tower only from 0.094 to 0.080 m/s).
 
-use std::collections::HashMap;
-use std::sync::atomic::{AtomicUsize, Ordering};
-
-use foldhash::fast::FixedState;
 use std::ops::Range;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use nalgebra::{Point3, UnitQuaternion, Vector3};
 use tatami_contact::{Contact, ContactModel, ContactProjection};
@@ -58,40 +55,65 @@ pub(crate) type Pose = (Point3<f64>, UnitQuaternion<f64>);
 /// the poses of the two bodies it was computed at.
 pub(crate) type Computed = (Contact, FeatureIds, [Pose; 2]);
 
+/// A pair of bodies, `(a, b)` with `a < b`.
+type Pair = (usize, usize);
+
+/// A pair kept apart: its gap, and whether the current pass met it.
+type KeptApart = (Pair, Apart, bool);
+
 /// The main thread's side of a collision pass while the held pairs are brought up to date
-/// (see [`ContactSet::refresh`]): meets the pairs the broad phase finds.
+/// (see [`ContactSet::refresh`]): meets the pairs the broad phase finds. The broad phase finds
+/// them in increasing order, and the set's lists are sorted by pair, so each is looked up by
+/// walking on from where the last was found: no hashing, and memory read in sequence (with
+/// hash maps, the lookups were 0.34 ms of the 1000-cube pile's step).
 pub(crate) struct Meeting<'a> {
-    index: &'a HashMap<(usize, usize), usize, FixedState>,
+    held: &'a [(Pair, usize)],
     met: &'a mut [bool],
-    apart: &'a mut HashMap<(usize, usize), (Apart, bool), FixedState>,
+    apart: &'a mut [KeptApart],
     placements: &'a [Placement],
     margin: f64,
+    /// Where the next lookup in `held` and in `apart` starts.
+    cursors: (usize, usize),
 }
 
 impl Meeting<'_> {
     /// Meets pair `(a, b)`, found overlapping by the broad phase: `true` if the set holds it
     /// (it stays, if still touching) or holds it [apart](ContactSet::keep_apart) and its bodies
     /// cannot have closed the gap since (it stays apart, untested); `false` if it is to be
-    /// computed, then [`ContactSet::insert`]ed or kept apart.
-    pub(crate) fn meet(&mut self, pair: (usize, usize)) -> bool {
-        if let Some(&k) = self.index.get(&pair) {
-            self.met[k] = true;
+    /// computed, then [`ContactSet::insert`]ed or kept apart. Pairs met in increasing order
+    /// are found in one walk through the lists; any order is correct.
+    pub(crate) fn meet(&mut self, pair: Pair) -> bool {
+        if let Some(k) = find(self.held, |h| h.0, &mut self.cursors.0, pair) {
+            self.met[self.held[k].1] = true;
             return true;
         }
-        match self.apart.get_mut(&pair) {
-            Some((apart, met))
-                if apart.still_apart(
+        match find(self.apart, |a| a.0, &mut self.cursors.1, pair) {
+            Some(k) => {
+                let (_, apart, met) = &mut self.apart[k];
+                let still = apart.still_apart(
                     &self.placements[pair.0],
                     &self.placements[pair.1],
                     self.margin,
-                ) =>
-            {
-                *met = true;
-                true
+                );
+                *met |= still;
+                still
             }
-            _ => false,
+            None => false,
         }
     }
+}
+
+/// The position of `pair` in `list` (sorted by `key`, without repeats), if it is there, searched
+/// from `cursor` on when `pair` is not before it (the broad phase's increasing order), else
+/// from the start; `cursor` is left where `pair` is or would be.
+fn find<T>(list: &[T], key: impl Fn(&T) -> Pair, cursor: &mut usize, pair: Pair) -> Option<usize> {
+    if *cursor > 0 && key(&list[*cursor - 1]) >= pair {
+        *cursor = list.partition_point(|x| key(x) < pair);
+    }
+    while *cursor < list.len() && key(&list[*cursor]) < pair {
+        *cursor += 1;
+    }
+    (*cursor < list.len() && key(&list[*cursor]) == pair).then_some(*cursor)
 }
 
 /// A row's name across steps: the feature id of the support vertex it acts at (`None` for rows
@@ -123,20 +145,21 @@ struct Entry {
 #[derive(Debug, Clone, Default)]
 pub(crate) struct ContactSet {
     entries: Vec<Entry>,
-    /// Position in `entries` of each pair `(body A, body B)`, rebuilt by [`ContactSet::end`].
-    /// Hashed with foldhash (the keys are body indices, not attacker-chosen): std's SipHash
-    /// cost a further 0.3 ms of the 1000-cube pile's 7.9 ms collision stage (lookups and the
-    /// rebuild in [`ContactSet::end`]).
-    index: HashMap<(usize, usize), usize, FixedState>,
+    /// Each entry's pair `(body A, body B)` with its position in `entries`, sorted by pair;
+    /// rebuilt by [`ContactSet::end`].
+    held: Vec<(Pair, usize)>,
     /// Whether the current collision pass's broad phase met each entry's pair.
     met: Vec<bool>,
     /// Pairs the broad phase meets that were last found apart along a face normal, each with
-    /// whether the current pass met it (see [`crate::apart`]). Hashed as `index` is.
-    apart: HashMap<(usize, usize), (Apart, bool), FixedState>,
+    /// whether the current pass met it (see [`crate::apart`]); sorted by pair after
+    /// [`ContactSet::end`].
+    apart: Vec<KeptApart>,
     /// Collision settings the contacts were computed with; others invalidate them.
     computed_with: (f64, f64),
     /// Scratch: row keys of one contact.
     keys: Vec<RowKey>,
+    /// Scratch: the entries' sort keys ([`sort_in_place`]).
+    sort_keys: Vec<(i64, usize)>,
     /// Scratch: the shock-propagation order.
     shock_order: Vec<(usize, Support)>,
     /// Scratch: the first guess for new pairs.
@@ -149,7 +172,7 @@ impl ContactSet {
     pub(crate) fn begin(&mut self, margin: f64, feature_angle: f64) {
         if self.computed_with != (margin, feature_angle) {
             self.entries.clear();
-            self.index.clear();
+            self.held.clear();
             self.apart.clear();
             self.computed_with = (margin, feature_angle);
         }
@@ -161,7 +184,8 @@ impl ContactSet {
     /// now overlapping through its [`Meeting`]. A pair keeps its contact if neither body moved
     /// by more than [`REUSE_TOLERANCE`] since it was computed (`placements` says where each
     /// body is), so a resting stack's pairs are computed once; the others
-    /// are recomputed in place by `compute` (from a per-thread `scratch`), and a pair it returns
+    /// are recomputed in place by `compute` (from a per-thread `scratch`, and given the old
+    /// contact's depths buffer to fill), and a pair it returns
     /// `None` for (no longer touching) is dropped by [`ContactSet::end`], as is a pair the broad
     /// phase did not meet.
     ///
@@ -177,7 +201,7 @@ impl ContactSet {
         on_every_core: bool,
         placements: &[Placement],
         scratch: fn() -> S,
-        compute: impl Fn(&mut S, (usize, usize)) -> Option<Computed> + Sync,
+        compute: impl Fn(&mut S, (usize, usize), Vec<f64>) -> Option<Computed> + Sync,
         broad_phase: impl FnOnce(&mut Meeting<'_>),
     ) -> usize {
         let still = |was: &Pose, now: Placement| {
@@ -192,7 +216,10 @@ impl ContactSet {
                 entry.state.touching = true;
                 return false;
             }
-            entry.state.touching = match compute(scratch, pair) {
+            // The old contact's depths buffer is handed over for the new one's (a pair no longer
+            // touching is left without depths until `end` drops it).
+            let depths = std::mem::take(&mut entry.contact.depths);
+            entry.state.touching = match compute(scratch, pair, depths) {
                 Some((contact, features, poses)) => {
                     entry.contact = contact;
                     entry.state.features = features;
@@ -204,11 +231,12 @@ impl ContactSet {
             true
         };
         let mut meeting = Meeting {
-            index: &self.index,
+            held: &self.held,
             met: &mut self.met,
             apart: &mut self.apart,
             placements,
             margin: self.computed_with.0,
+            cursors: (0, 0),
         };
         if on_every_core {
             let recomputed = AtomicUsize::new(0);
@@ -239,8 +267,6 @@ impl ContactSet {
     /// Adds a pair the set did not hold, with its contact computed at `poses` and a feature id
     /// per support vertex.
     pub(crate) fn insert(&mut self, (contact, features, poses): Computed) {
-        let pair = (contact.body_a.0, contact.body_b.0);
-        self.index.insert(pair, self.entries.len());
         self.entries.push(Entry {
             contact,
             state: PairState {
@@ -257,8 +283,8 @@ impl ContactSet {
 
     /// Keeps pair `pair`, met by the broad phase and found apart, to be skipped while it stays
     /// so (see [`Meeting::meet`]).
-    pub(crate) fn keep_apart(&mut self, pair: (usize, usize), apart: Apart) {
-        self.apart.insert(pair, (apart, true));
+    pub(crate) fn keep_apart(&mut self, pair: Pair, apart: Apart) {
+        self.apart.push((pair, apart, true));
     }
 
     /// How many pairs the set keeps apart.
@@ -271,20 +297,27 @@ impl ContactSet {
     /// touch, and orders the rest from the highest contact to the lowest along `gravity`; drops
     /// the pairs kept apart that it did not meet or that were found touching.
     pub(crate) fn end(&mut self, gravity: &Vector3<f64>) {
-        self.apart.retain(|_, (_, met)| std::mem::take(met));
+        // A pair found apart again after its bound ran out was not met under its old gap, so
+        // no pair is kept twice.
+        self.apart.retain_mut(|(_, _, met)| std::mem::take(met));
+        self.apart.sort_unstable_by_key(|&(pair, _, _)| pair);
         let mut met = self.met.iter();
         self.entries
             .retain(|e| met.next().is_some_and(|&met| met) && e.state.touching);
-        // Sorted by key and index, then moved once each: an entry is a few hundred bytes, and
-        // sorting the entries themselves moved each about log n times (1.7% of the 1000-cube
-        // pile's step in memmove alone).
-        self.entries
-            .sort_by_cached_key(|e| total_order(e.contact.frame.origin.coords.dot(gravity)));
-        self.index.clear();
-        for (k, e) in self.entries.iter().enumerate() {
-            self.index
-                .insert((e.contact.body_a.0, e.contact.body_b.0), k);
-        }
+        sort_in_place(&mut self.entries, &mut self.sort_keys, |e| {
+            total_order(e.contact.frame.origin.coords.dot(gravity))
+        });
+        self.sort_held();
+    }
+
+    /// Rebuilds the sorted list of held pairs from the entries.
+    fn sort_held(&mut self) {
+        self.held.clear();
+        self.held.extend(
+            (self.entries.iter().enumerate())
+                .map(|(k, e)| ((e.contact.body_a.0, e.contact.body_b.0), k)),
+        );
+        self.held.sort_unstable();
     }
 
     /// Forgets body `index` as [`World::remove_body`](crate::World::remove_body) removes it:
@@ -298,13 +331,11 @@ impl ContactSet {
                 body.0 -= 1;
             }
         };
-        self.index.clear();
-        for (k, e) in self.entries.iter_mut().enumerate() {
+        for e in &mut self.entries {
             renumber(&mut e.contact.body_a);
             renumber(&mut e.contact.body_b);
-            self.index
-                .insert((e.contact.body_a.0, e.contact.body_b.0), k);
         }
+        self.sort_held();
     }
 
     /// The contacts, in Gauss–Seidel order.
@@ -435,6 +466,31 @@ fn spread_over_normal_rows(
     }
 }
 
+/// Sorts `items` by `key`, ties in their order (as a stable sort would), with `keys` as
+/// scratch. The keys and positions are sorted, then each item is swapped into place once, and
+/// an item already in place is not moved: an entry is a few hundred bytes, sorting the entries
+/// themselves moved each about log n times (1.7% of the 1000-cube pile's step in memmove alone),
+/// and the standard `sort_by_cached_key`, which this follows, also swaps each item in place
+/// with itself, three copies of it (0.1 ms of the pile's step, whose order changes little).
+fn sort_in_place<T>(items: &mut [T], keys: &mut Vec<(i64, usize)>, key: impl Fn(&T) -> i64) {
+    keys.clear();
+    keys.extend(items.iter().enumerate().map(|(i, item)| (key(item), i)));
+    // Positions are unique, so the unstable sort gives the stable order.
+    keys.sort_unstable();
+    for i in 0..items.len() {
+        // The item for place `i` was at `keys[i].1`, unless an earlier swap moved it on: follow
+        // where each earlier place sent its item.
+        let mut from = keys[i].1;
+        while from < i {
+            from = keys[from].1;
+        }
+        keys[i].1 = from;
+        if from != i {
+            items.swap(i, from);
+        }
+    }
+}
+
 /// An integer that orders as [`f64::total_cmp`] orders `x` (the same bit trick), so floats can
 /// be sort keys.
 fn total_order(x: f64) -> i64 {
@@ -467,6 +523,62 @@ fn row_keys(model: ContactModel, features: &[FeatureId], rows: usize, out: &mut 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every pair is found, or not, as a linear search says: asked in increasing order (the
+    /// broad phase's, one walk) and in a shuffled order (a search from the start when a pair
+    /// comes before the cursor).
+    #[test]
+    fn find_looks_pairs_up_in_any_order() {
+        let list: Vec<(Pair, usize)> = (0..40)
+            .flat_map(|a| {
+                (a + 1..40)
+                    .filter(move |b| (a * 7 + b * 3) % 5 == 0)
+                    .map(move |b| (a, b))
+            })
+            .enumerate()
+            .map(|(k, pair): (usize, Pair)| (pair, k))
+            .collect();
+        let mut asked: Vec<Pair> = (0..40)
+            .flat_map(|a| (a + 1..40).map(move |b| (a, b)))
+            .collect();
+        let mut random = crate::dropped::Random::new(3);
+        for shuffled in [false, true] {
+            if shuffled {
+                for k in (1..asked.len()).rev() {
+                    asked.swap(k, random.between(0.0, k as f64 + 1.0) as usize % (k + 1));
+                }
+            }
+            let mut cursor = 0;
+            for &pair in &asked {
+                let expected = list.iter().position(|&(p, _)| p == pair);
+                assert_eq!(
+                    find(&list, |h| h.0, &mut cursor, pair),
+                    expected,
+                    "{pair:?}"
+                );
+            }
+        }
+    }
+
+    /// Against the standard stable sort, on keys with many ties and orders near sorted and
+    /// far from it.
+    #[test]
+    fn sort_in_place_is_a_stable_sort() {
+        let mut random = crate::dropped::Random::new(5);
+        let mut keys = Vec::new();
+        for len in [0, 1, 2, 7, 100, 1000] {
+            for spread in [2.0, 50.0, 1e6] {
+                let items: Vec<(i64, usize)> = (0..len)
+                    .map(|i| (random.between(0.0, spread) as i64, i))
+                    .collect();
+                let mut expected = items.clone();
+                expected.sort_by_key(|item| item.0);
+                let mut sorted = items;
+                sort_in_place(&mut sorted, &mut keys, |item| item.0);
+                assert_eq!(sorted, expected, "{len} items, keys below {spread}");
+            }
+        }
+    }
 
     #[test]
     fn total_order_sorts_as_total_cmp() {

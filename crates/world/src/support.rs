@@ -103,6 +103,27 @@ fn cap_directions() -> &'static [(f64, f64); CAP_VERTICES] {
     })
 }
 
+/// The feature angle with the trigonometry the feature search reads: computed once per
+/// collision pass rather than for every feature of every pair (a sine and a tangent were a
+/// tenth of a box feature's time).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct FeatureAngle {
+    cos: f64,
+    sin: f64,
+    tan_squared: f64,
+}
+
+impl FeatureAngle {
+    /// The feature angle `angle` (rad).
+    pub(crate) fn new(angle: f64) -> Self {
+        Self {
+            cos: angle.cos(),
+            sin: angle.sin(),
+            tan_squared: angle.tan().powi(2),
+        }
+    }
+}
+
 impl Outline {
     /// The outline of a polyhedron from its hull vertices.
     pub(crate) fn polyhedron(vertices: Vec<Vector3<f64>>) -> Self {
@@ -129,7 +150,7 @@ impl Outline {
         origin: &Point3<f64>,
         rotation: &UnitQuaternion<f64>,
         direction: &Vector3<f64>,
-        angle: f64,
+        angle: &FeatureAngle,
         out: &mut Vec<FeaturePoint>,
     ) {
         out.clear();
@@ -154,7 +175,7 @@ impl Outline {
                     point: origin + rotation * v,
                     id,
                 };
-                if d.z.abs() >= angle.cos() || rim.is_none() {
+                if d.z.abs() >= angle.cos || rim.is_none() {
                     out.extend((0u32..).zip(cap_directions()).map(|(k, (cos, sin))| {
                         place((
                             Vector3::new(radius * cos, radius * sin, cap),
@@ -163,7 +184,7 @@ impl Outline {
                     }));
                 } else {
                     let rim = rim.unwrap_or_default();
-                    if d.z.abs() <= angle.sin() {
+                    if d.z.abs() <= angle.sin {
                         // Lying on its side: the line along the axis.
                         out.extend(
                             [
@@ -184,7 +205,7 @@ impl Outline {
                     .map(|v| v.dot(&local))
                     .fold(f64::NEG_INFINITY, f64::max);
                 // Candidates: every vertex within `radius · sin(angle)` of the extreme.
-                let tolerance = radius * angle.sin();
+                let tolerance = radius * angle.sin;
                 out.extend(
                     (0u32..)
                         .zip(vertices)
@@ -194,15 +215,15 @@ impl Outline {
                             id,
                         }),
                 );
-                keep_within_angle(out, direction, angle, 1e-9 * radius);
+                keep_within_angle(out, direction, angle.tan_squared, 1e-9 * radius);
             }
         }
     }
 }
 
-/// Drops from `points` every point that another lies above more steeply than `angle` (along
-/// the unit `direction`): what is left is the face, edge or corner tilted by less than `angle`
-/// from the plane normal to `direction`. Unlike a height threshold this does not depend on the
+/// Drops from `points` every point that another lies above more steeply than the feature angle
+/// (`slope_squared` its tangent squared) along the unit `direction`: what is left is the face,
+/// edge or corner tilted by less than that angle from the plane normal to `direction`. Unlike a height threshold this does not depend on the
 /// body's size: the far bottom corners of a wide, thin slab are within any fixed height of its
 /// top face, but every one lies straight below a top corner.
 ///
@@ -212,11 +233,10 @@ impl Outline {
 fn keep_within_angle(
     points: &mut Vec<FeaturePoint>,
     direction: &Vector3<f64>,
-    angle: f64,
+    slope_squared: f64,
     eps: f64,
 ) {
     // `height > |horizontal| · tan(angle) + eps`, squared to keep square roots out of the loop.
-    let slope_squared = angle.tan().powi(2);
     let mut kept = 0;
     for i in 0..points.len() {
         let v = points[i];
@@ -245,11 +265,14 @@ pub(crate) struct Support {
 }
 
 /// The support polygon of A's `feature_a` resting on B's `feature_b`, with `normal` (unit) from B
-/// into A. `None` only if a feature is empty or not finite.
+/// into A, its depths written into `depths` (cleared first: the buffer of the contact it
+/// replaces, so that a moved pair's contact is recomputed without an allocation). `None` only
+/// if a feature is empty or not finite.
 pub(crate) fn support(
     feature_a: &[FeaturePoint],
     feature_b: &[FeaturePoint],
     normal: &Vector3<f64>,
+    mut depths: Vec<f64>,
 ) -> Option<Support> {
     let (a0, b0) = (feature_a.first()?, feature_b.first()?);
     let frame = ContactFrame::from_normal(nalgebra::center(&a0.point, &b0.point), *normal).ok()?;
@@ -265,11 +288,13 @@ pub(crate) fn support(
         );
     }
     let polygon = ConvexPolygon::from_points(&points).ok()?;
-    let depths = polygon
-        .vertices()
-        .iter()
-        .map(|p| surface_b.height(p) - surface_a.height(p))
-        .collect();
+    depths.clear();
+    depths.extend(
+        polygon
+            .vertices()
+            .iter()
+            .map(|p| surface_b.height(p) - surface_a.height(p)),
+    );
     let (lo, hi) = polygon.bounding_box();
     let tolerance = polygon.tolerance().max(SAME_POINT * (hi - lo).norm());
     let features = polygon
@@ -501,12 +526,15 @@ mod tests {
     fn twisted_squares_overlap_in_a_regular_octagon() {
         let a = square(1.0, std::f64::consts::FRAC_PI_4, 0.0);
         let b = square(1.0, 0.0, 0.0);
-        let s = support(&a, &b, &Vector3::z()).unwrap();
+        let s = support(&a, &b, &Vector3::z(), Vec::new()).unwrap();
         assert_eq!(s.polygon.vertices().len(), 8);
         // Regular octagon with inradius 1: area 8 tan(π/8).
         let expected = 8.0 * (std::f64::consts::PI / 8.0).tan();
         assert!((s.polygon.area() - expected).abs() < 1e-12);
         assert!(s.depths.iter().all(|d| d.abs() < 1e-12));
+        // A recycled buffer (a replaced contact's depths) is cleared before it is filled.
+        let recycled = support(&a, &b, &Vector3::z(), vec![7.0; 12]).unwrap();
+        assert_eq!(recycled.depths, s.depths);
     }
 
     #[test]
@@ -520,7 +548,7 @@ mod tests {
             })
             .collect();
         let b = square(2.0, 0.0, 0.0);
-        let s = support(&a, &b, &Vector3::z()).unwrap();
+        let s = support(&a, &b, &Vector3::z(), Vec::new()).unwrap();
         for (v, d) in s.polygon.vertices().iter().zip(&s.depths) {
             let world = s.frame.to_world(v);
             assert!(
@@ -538,7 +566,7 @@ mod tests {
             Point3::new(3.0, 0.5, 0.0),
         ]);
         let b = square(1.0, 0.0, 0.0);
-        let s = support(&a, &b, &Vector3::z()).unwrap();
+        let s = support(&a, &b, &Vector3::z(), Vec::new()).unwrap();
         assert_eq!(s.polygon.kind(), PolygonKind::Segment);
         let ends: Vec<_> = s
             .polygon
@@ -564,7 +592,7 @@ mod tests {
             Point3::new(0.25, -1.0, 0.0),
             Point3::new(0.25, 1.0, 0.0),
         ]);
-        let s = support(&a, &b, &Vector3::z()).unwrap();
+        let s = support(&a, &b, &Vector3::z(), Vec::new()).unwrap();
         assert_eq!(s.polygon.kind(), PolygonKind::Point);
         assert!(
             (s.frame.to_world(&s.polygon.vertices()[0]) - Point3::new(0.25, 0.0, 0.0)).norm()
@@ -576,14 +604,14 @@ mod tests {
     fn feature_ids_name_the_corners_and_crossings_and_survive_a_small_motion() {
         // A small square on a large one: its four corners, all of A.
         let small = square(0.5, 0.3, 0.0);
-        let s = support(&small, &square(2.0, 0.0, 0.0), &Vector3::z()).unwrap();
+        let s = support(&small, &square(2.0, 0.0, 0.0), &Vector3::z(), Vec::new()).unwrap();
         let mut ids = s.features.clone();
         ids.sort();
         assert_eq!(ids[..], (0..4).map(FeatureId::A).collect::<Vec<_>>());
         // Twisted equal squares: eight crossings, each a different pair of edges.
         let a = square(1.0, std::f64::consts::FRAC_PI_4, 0.0);
         let b = square(1.0, 0.0, 0.0);
-        let s = support(&a, &b, &Vector3::z()).unwrap();
+        let s = support(&a, &b, &Vector3::z(), Vec::new()).unwrap();
         let mut crossings = s.features.clone();
         crossings.sort();
         crossings.dedup();
@@ -601,7 +629,7 @@ mod tests {
                 ..*f
             })
             .collect();
-        let after = support(&moved, &b, &Vector3::z()).unwrap();
+        let after = support(&moved, &b, &Vector3::z(), Vec::new()).unwrap();
         for (v, id) in after.polygon.vertices().iter().zip(&after.features) {
             let before = s.features[s
                 .polygon
