@@ -241,9 +241,6 @@ fn contact_of(
     let Some(s) = support(&features.a, &features.b, &normal, depths) else {
         return Found::Nothing;
     };
-    // The polygon's mean distance from its centroid (the face model's `r̄`), kept with it: computed
-    // here, on every core, instead of where the rows are built, on one.
-    s.polygon.centroid_mean_distance();
     let contact = Contact {
         body_a: BodyId(i),
         body_b: BodyId(j),

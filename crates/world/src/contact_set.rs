@@ -300,7 +300,10 @@ impl ContactSet {
         // A pair found apart again after its bound ran out was not met under its old gap, so
         // no pair is kept twice.
         self.apart.retain_mut(|(_, _, met)| std::mem::take(met));
-        self.apart.sort_unstable_by_key(|&(pair, _, _)| pair);
+        // The pairs kept before and those added in this pass are two runs in pair order: the
+        // stable sort finds and merges them in one pass (the unstable one sorted them anew,
+        // moving records of a hundred bytes, 0.1 ms of the 1000-cube pile's step).
+        self.apart.sort_by_key(|&(pair, _, _)| pair);
         let mut met = self.met.iter();
         self.entries
             .retain(|e| met.next().is_some_and(|&met| met) && e.state.touching);
@@ -389,9 +392,16 @@ impl ContactSet {
             }
             let rows = rows_of(problem, &entry.state.blocks);
             row_keys(model, &entry.state.features, rows.len(), &mut self.keys);
-            for (row, key) in problem.rows[rows].iter_mut().zip(&self.keys) {
-                if let Ok(k) = entry.state.impulses.binary_search_by(|(k, _)| k.cmp(key)) {
-                    row.impulse = entry.state.impulses[k].1;
+            let stored = &entry.state.impulses;
+            for (index, (row, key)) in problem.rows[rows].iter_mut().zip(&self.keys).enumerate() {
+                // Where the rows are as they were (the face model's always are), a row's key is
+                // at its own index: one comparison instead of a search (the keys are unique).
+                let found = match stored.get(index) {
+                    Some((k, _)) if k == key => Some(index),
+                    _ => stored.binary_search_by(|(k, _)| k.cmp(key)).ok(),
+                };
+                if let Some(k) = found {
+                    row.impulse = stored[k].1;
                 }
             }
         }
