@@ -607,7 +607,9 @@ mod tests {
             .build()
             .expect("a valid scene");
         let dt = 1.0 / 60.0;
-        let stored = |world: &World| -> Vec<((usize, usize), Vec<(RowKey, f64)>)> {
+        // Each pair with its stored impulses.
+        type Stored = Vec<(Pair, Vec<(RowKey, f64)>)>;
+        let stored = |world: &World| -> Stored {
             let set = &world.contact_set;
             set.entries
                 .iter()
