@@ -299,6 +299,7 @@ macro_rules! rapier_scene {
                 ImpulseJointSet::new(),
                 MultibodyJointSet::new(),
                 CCDSolver::new(),
+                SoftBodySet::new(),
             ));
             let step = || {
                 let w = &mut *world.borrow_mut();
@@ -312,6 +313,7 @@ macro_rules! rapier_scene {
                     &mut w.1,
                     &mut w.6,
                     &mut w.7,
+                    &mut w.9,
                     &mut w.8,
                     &(),
                     &(),

@@ -19,6 +19,7 @@ macro_rules! rapier_scene {
             narrow_phase: $rapier::prelude::NarrowPhase,
             impulse_joints: $rapier::prelude::ImpulseJointSet,
             multibody_joints: $rapier::prelude::MultibodyJointSet,
+            soft_bodies: $rapier::prelude::SoftBodySet,
             ccd: $rapier::prelude::CCDSolver,
             parameters: $rapier::prelude::IntegrationParameters,
             gravity: $rapier::prelude::Vector,
@@ -76,6 +77,7 @@ macro_rules! rapier_scene {
                     narrow_phase: NarrowPhase::new(),
                     impulse_joints: ImpulseJointSet::new(),
                     multibody_joints: MultibodyJointSet::new(),
+                    soft_bodies: SoftBodySet::new(),
                     ccd: CCDSolver::new(),
                     parameters: IntegrationParameters {
                         dt: scene.dt as $real,
@@ -98,6 +100,7 @@ macro_rules! rapier_scene {
                     &mut self.colliders,
                     &mut self.impulse_joints,
                     &mut self.multibody_joints,
+                    &mut self.soft_bodies,
                     &mut self.ccd,
                     &(),
                     &(),
