@@ -609,33 +609,58 @@ fn update_block<P: Projection>(
             *a = *b;
         }
     };
-    let result = update_block_rows(
-        (&mut a, &mut b),
-        &mut rows[block.rows.clone()],
-        &mut block.projection,
-        &workspace.responses[responses],
-        (&mut workspace.block_impulse, &mut workspace.block_applied),
-        relaxation,
-        push,
-    );
+    let rows = &mut rows[block.rows.clone()];
+    let bodies_and_rows = ((&mut a, &mut b), rows);
+    let (projection, responses) = (&mut block.projection, &workspace.responses[responses]);
+    let buffers = (&mut workspace.block_impulse[..], &mut workspace.block_applied[..]);
+    // A point contact's 3 rows and a face's 6 get their own copies of the loop, whose lengths
+    // the compiler then knows.
+    let result = match bodies_and_rows.1.len() {
+        3 => update_block_rows::<P, 3>(
+            bodies_and_rows,
+            projection,
+            responses,
+            buffers,
+            relaxation,
+            push,
+        ),
+        6 => update_block_rows::<P, 6>(
+            bodies_and_rows,
+            projection,
+            responses,
+            buffers,
+            relaxation,
+            push,
+        ),
+        _ => update_block_rows::<P, 0>(
+            bodies_and_rows,
+            projection,
+            responses,
+            buffers,
+            relaxation,
+            push,
+        ),
+    };
     bodies[ia] = a;
     bodies[ib] = b;
     result.map_err(|()| LcpError::NonFinite { block: index })
 }
 
 /// [`update_block`]'s rows, on copies of the block's two bodies moved by `push`; `Err` on a
-/// non-finite step.
-fn update_block_rows<P: Projection>(
-    (a, b): (&mut SolverBody, &mut SolverBody),
-    rows: &mut [crate::Row],
+/// non-finite step. `ROWS` is the block's row count, or 0 for any.
+fn update_block_rows<P: Projection, const ROWS: usize>(
+    ((a, b), rows): ((&mut SolverBody, &mut SolverBody), &mut [crate::Row]),
     projection: &mut P,
     responses: &[RowResponse],
     (impulse, applied): (&mut [f64], &mut [f64]),
     relaxation: f64,
     push: impl Fn(&mut SolverBody, &mut SolverBody, &RowResponse, f64),
 ) -> Result<Change, ()> {
-    let impulse = &mut impulse[..rows.len()];
-    let applied = &mut applied[..rows.len()];
+    let n = if ROWS == 0 { rows.len() } else { ROWS };
+    let rows = &mut rows[..n];
+    let responses = &responses[..n];
+    let impulse = &mut impulse[..n];
+    let applied = &mut applied[..n];
     for (k, row) in rows.iter().enumerate() {
         impulse[k] = row.impulse;
         applied[k] = row.impulse;
