@@ -91,6 +91,7 @@ impl FaceProjection {
 }
 
 impl Projection for FaceProjection {
+    #[inline]
     fn project(&mut self, impulses: &mut [f64], changed: usize) {
         impulses[NORMAL] = impulses[NORMAL].max(0.0);
         let f3 = impulses[NORMAL];
@@ -112,11 +113,13 @@ impl Projection for FaceProjection {
         }
     }
 
+    #[inline]
     fn tangent_pair(&self) -> Option<usize> {
         self.cone.tangent_pair(FRICTION_1)
     }
 
     /// `f3`; without it the face carries no friction, twist or tilt.
+    #[inline]
     fn leading_normal_rows(&self) -> usize {
         NORMAL + 1
     }

@@ -14,17 +14,20 @@ pub struct PointFriction {
 }
 
 impl Projection for PointFriction {
+    #[inline]
     fn project(&mut self, impulses: &mut [f64], _changed: usize) {
         impulses[0] = impulses[0].max(0.0);
         let limit = self.coefficient * impulses[0];
         self.cone.clamp(&mut impulses[1..3], limit);
     }
 
+    #[inline]
     fn tangent_pair(&self) -> Option<usize> {
         self.cone.tangent_pair(1)
     }
 
     /// The normal row; without it the cone holds no friction.
+    #[inline]
     fn leading_normal_rows(&self) -> usize {
         1
     }

@@ -18,6 +18,7 @@ pub enum ContactProjection {
 }
 
 impl Projection for ContactProjection {
+    #[inline]
     fn project(&mut self, impulses: &mut [f64], changed: usize) {
         match self {
             Self::Point(p) => p.project(impulses, changed),
@@ -26,6 +27,7 @@ impl Projection for ContactProjection {
         }
     }
 
+    #[inline]
     fn tangent_pair(&self) -> Option<usize> {
         match self {
             Self::Point(p) => p.tangent_pair(),
@@ -34,6 +36,7 @@ impl Projection for ContactProjection {
         }
     }
 
+    #[inline]
     fn leading_normal_rows(&self) -> usize {
         match self {
             Self::Point(p) => p.leading_normal_rows(),
@@ -42,6 +45,7 @@ impl Projection for ContactProjection {
         }
     }
 
+    #[inline]
     fn whole_block(&self) -> bool {
         match self {
             Self::Face(p) => p.whole_block(),
@@ -49,6 +53,7 @@ impl Projection for ContactProjection {
         }
     }
 
+    #[inline]
     fn admissible(&mut self, impulses: &[f64]) -> bool {
         match self {
             Self::Face(p) => p.admissible(impulses),

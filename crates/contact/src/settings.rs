@@ -56,12 +56,14 @@ impl FrictionCone {
 
     /// The first tangent row of a block whose tangent rows start at `first`, if PGS must
     /// update the pair together ([`tatami_lcp::Projection::tangent_pair`]): for the circle.
+    #[inline]
     pub fn tangent_pair(self, first: usize) -> Option<usize> {
         (self == Self::Circle).then_some(first)
     }
 
     /// Bounds the tangential impulse `tangential = [f1, f2]` by `limit` (already `μ` times the
     /// normal impulse): each axis for the box, the magnitude (direction kept) for the circle.
+    #[inline]
     pub fn clamp(self, tangential: &mut [f64], limit: f64) {
         match self {
             Self::Box => {
@@ -92,6 +94,7 @@ impl FrictionCone {
 /// `√(f1² + f2²)` rather than `hypot`, which guards against an overflow that finite impulses
 /// below 1e154 N·s cannot reach and costs several times more in PGS's innermost loop; `hypot`
 /// takes over past that.
+#[inline]
 fn magnitude(f1: f64, f2: f64) -> f64 {
     let norm = (f1 * f1 + f2 * f2).sqrt();
     if norm.is_finite() { norm } else { f1.hypot(f2) }
