@@ -592,19 +592,20 @@ fn update_block<P: Projection>(
     } = problem;
     let block = &mut blocks[index];
     let (ia, ib) = (block.body_a.0, block.body_b.0);
-    // The two bodies are read and moved after every row: copies stay in registers for the
-    // block's update instead of going through the body array each time (written back below).
-    // A block on one body keeps the copies equal, in the order `apply` adds to it.
+    // The two bodies' velocities are read and moved after every row: copies stay in registers
+    // for the block's update instead of going through the body array each time (written back
+    // below; the masses are in the responses). A block on one body keeps the copies equal, in
+    // the order `apply` adds to it.
     let same = ia == ib;
-    let (mut a, mut b) = (bodies[ia], bodies[ib]);
-    let push = |a: &mut SolverBody, b: &mut SolverBody, response: &RowResponse, delta: f64| {
-        a.linear_velocity += response.linear_a * delta;
-        a.angular_velocity += response.angular_a * delta;
+    let (mut a, mut b) = (Motion::of(&bodies[ia]), Motion::of(&bodies[ib]));
+    let push = |a: &mut Motion, b: &mut Motion, response: &RowResponse, delta: f64| {
+        a.linear += response.linear_a * delta;
+        a.angular += response.angular_a * delta;
         if same {
             *b = *a;
         }
-        b.linear_velocity += response.linear_b * delta;
-        b.angular_velocity += response.angular_b * delta;
+        b.linear += response.linear_b * delta;
+        b.angular += response.angular_b * delta;
         if same {
             *a = *b;
         }
@@ -612,7 +613,10 @@ fn update_block<P: Projection>(
     let rows = &mut rows[block.rows.clone()];
     let bodies_and_rows = ((&mut a, &mut b), rows);
     let (projection, responses) = (&mut block.projection, &workspace.responses[responses]);
-    let buffers = (&mut workspace.block_impulse[..], &mut workspace.block_applied[..]);
+    let buffers = (
+        &mut workspace.block_impulse[..],
+        &mut workspace.block_applied[..],
+    );
     // A point contact's 3 rows and a face's 6 get their own copies of the loop, whose lengths
     // the compiler then knows.
     let result = match bodies_and_rows.1.len() {
@@ -641,20 +645,41 @@ fn update_block<P: Projection>(
             push,
         ),
     };
-    bodies[ia] = a;
-    bodies[ib] = b;
+    a.write_to(&mut bodies[ia]);
+    b.write_to(&mut bodies[ib]);
     result.map_err(|()| LcpError::NonFinite { block: index })
+}
+
+/// A body's velocities, all a row update reads and moves of it.
+#[derive(Debug, Clone, Copy)]
+struct Motion {
+    linear: Vector3<f64>,
+    angular: Vector3<f64>,
+}
+
+impl Motion {
+    fn of(body: &SolverBody) -> Self {
+        Self {
+            linear: body.linear_velocity,
+            angular: body.angular_velocity,
+        }
+    }
+
+    fn write_to(&self, body: &mut SolverBody) {
+        body.linear_velocity = self.linear;
+        body.angular_velocity = self.angular;
+    }
 }
 
 /// [`update_block`]'s rows, on copies of the block's two bodies moved by `push`; `Err` on a
 /// non-finite step. `ROWS` is the block's row count, or 0 for any.
 fn update_block_rows<P: Projection, const ROWS: usize>(
-    ((a, b), rows): ((&mut SolverBody, &mut SolverBody), &mut [crate::Row]),
+    ((a, b), rows): ((&mut Motion, &mut Motion), &mut [crate::Row]),
     projection: &mut P,
     responses: &[RowResponse],
     (impulse, applied): (&mut [f64], &mut [f64]),
     relaxation: f64,
-    push: impl Fn(&mut SolverBody, &mut SolverBody, &RowResponse, f64),
+    push: impl Fn(&mut Motion, &mut Motion, &RowResponse, f64),
 ) -> Result<Change, ()> {
     let n = if ROWS == 0 { rows.len() } else { ROWS };
     let rows = &mut rows[..n];
@@ -671,8 +696,11 @@ fn update_block_rows<P: Projection, const ROWS: usize>(
     let normals = projection.leading_normal_rows();
     let mut k = 0;
     while k < rows.len() {
-        let error = |r: usize, a: &SolverBody, b: &SolverBody| {
-            rows[r].jacobian.velocity(a, b) - rows[r].target
+        let error = |r: usize, a: &Motion, b: &Motion| {
+            rows[r]
+                .jacobian
+                .velocity_of([&a.linear, &a.angular], [&b.linear, &b.angular])
+                - rows[r].target
         };
         let width = if pair == Some(k) {
             // Exact line search along −e on the quadratic ½ λᵀKλ + eᵀλ (module doc).

@@ -24,10 +24,19 @@ impl Jacobian {
     /// `w = J v` for the bodies' current velocities.
     #[inline]
     pub fn velocity(&self, a: &SolverBody, b: &SolverBody) -> f64 {
-        self.linear_a.dot(&a.linear_velocity)
-            + self.angular_a.dot(&a.angular_velocity)
-            + self.linear_b.dot(&b.linear_velocity)
-            + self.angular_b.dot(&b.angular_velocity)
+        self.velocity_of(
+            [&a.linear_velocity, &a.angular_velocity],
+            [&b.linear_velocity, &b.angular_velocity],
+        )
+    }
+
+    /// `w = J v` for A's and B's `[linear, angular]` velocities.
+    #[inline]
+    pub(crate) fn velocity_of(&self, a: [&Vector3<f64>; 2], b: [&Vector3<f64>; 2]) -> f64 {
+        self.linear_a.dot(a[0])
+            + self.angular_a.dot(a[1])
+            + self.linear_b.dot(b[0])
+            + self.angular_b.dot(b[1])
     }
 
     fn is_finite(&self) -> bool {
