@@ -72,7 +72,15 @@ impl FrictionCone {
                 }
             }
             Self::Circle => {
-                let norm = magnitude(tangential[0], tangential[1]);
+                // Well inside the disc by the squares, which PGS finds after most of its row
+                // updates, the square root is not needed: the rounded root of the squares
+                // would be below `limit` (the margin of 4 ulps covers the roundings of both
+                // squares and of the root), and nothing changes. Otherwise, the exact test.
+                let (f1, f2) = (tangential[0], tangential[1]);
+                if f1 * f1 + f2 * f2 < limit * limit * (1.0 - 4.0 * f64::EPSILON) {
+                    return;
+                }
+                let norm = magnitude(f1, f2);
                 if norm > limit {
                     tangential[0] *= limit / norm;
                     tangential[1] *= limit / norm;
@@ -181,6 +189,64 @@ impl Default for ContactSettings {
             friction_cone: FrictionCone::Circle,
             twist_radius: TwistRadius::Exact,
             remove_parallel_torque: false,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+
+    /// The circle's clamp as the square root alone decides it, the oracle of the shortcut.
+    fn clamped_by_root(mut tangential: [f64; 2], limit: f64) -> [f64; 2] {
+        let norm = magnitude(tangential[0], tangential[1]);
+        if norm > limit {
+            tangential[0] *= limit / norm;
+            tangential[1] *= limit / norm;
+        }
+        tangential
+    }
+
+    proptest! {
+        /// The shortcut inside the disc changes no bit: tangential impulses within a few ulps of
+        /// the limit on either side (where the squares and the root round differently), far
+        /// inside and outside, over magnitudes from 1e-150 to 1e150.
+        #[test]
+        fn the_circle_clamps_as_its_square_root_decides(
+            angle in 0.0..std::f64::consts::TAU,
+            exponent in -150i32..150,
+            ulps in -16i64..16,
+            scale in prop_oneof![Just(1.0), 0.0..2.0],
+        ) {
+            let limit = 10f64.powi(exponent);
+            let norm = f64::from_bits((limit * scale).to_bits().saturating_add_signed(ulps));
+            let tangential = [norm * angle.cos(), norm * angle.sin()];
+            let mut clamped = tangential;
+            FrictionCone::Circle.clamp(&mut clamped, limit);
+            let expected = clamped_by_root(tangential, limit);
+            prop_assert_eq!(clamped.map(f64::to_bits), expected.map(f64::to_bits));
+        }
+    }
+
+    #[test]
+    fn non_finite_and_zero_limits_take_the_exact_path() {
+        for (tangential, limit) in [
+            ([3.0, 4.0], 0.0),
+            ([0.0, 0.0], 0.0),
+            ([1e200, 1e200], 1.0),
+            ([3.0, 4.0], f64::INFINITY),
+            ([3.0, 4.0], f64::NAN),
+        ] {
+            let mut clamped = tangential;
+            FrictionCone::Circle.clamp(&mut clamped, limit);
+            let expected = clamped_by_root(tangential, limit);
+            assert_eq!(
+                clamped.map(f64::to_bits),
+                expected.map(f64::to_bits),
+                "{tangential:?} within {limit}"
+            );
         }
     }
 }
