@@ -516,13 +516,22 @@ impl Body {
 
     /// Kinetic energy, translational plus rotational (J).
     pub fn kinetic_energy(&self) -> f64 {
-        self.kinetic_energy_at(&self.linear_velocity, &self.angular_velocity)
+        self.kinetic_energy_at(
+            &self.inertia_world(),
+            &self.linear_velocity,
+            &self.angular_velocity,
+        )
     }
 
-    /// The kinetic energy the body would have at these velocities, in its current pose (J).
-    pub(crate) fn kinetic_energy_at(&self, linear: &Vector3<f64>, angular: &Vector3<f64>) -> f64 {
-        0.5 * self.mass * linear.norm_squared()
-            + 0.5 * angular.dot(&(self.inertia_world() * angular))
+    /// The kinetic energy the body would have at these velocities, in its current pose, whose
+    /// world inertia is `inertia_world` (J).
+    pub(crate) fn kinetic_energy_at(
+        &self,
+        inertia_world: &Matrix3<f64>,
+        linear: &Vector3<f64>,
+        angular: &Vector3<f64>,
+    ) -> f64 {
+        0.5 * self.mass * linear.norm_squared() + 0.5 * angular.dot(&(inertia_world * angular))
     }
 
     /// Where the body goes over `dt` with the solved velocities: the centre of mass along the
