@@ -610,40 +610,23 @@ fn update_block<P: Projection>(
             *a = *b;
         }
     };
-    let rows = &mut rows[block.rows.clone()];
-    let bodies_and_rows = ((&mut a, &mut b), rows);
-    let (projection, responses) = (&mut block.projection, &workspace.responses[responses]);
-    let buffers = (
-        &mut workspace.block_impulse[..],
-        &mut workspace.block_applied[..],
-    );
+    let update = BlockUpdate {
+        bodies: (&mut a, &mut b),
+        rows: &mut rows[block.rows.clone()],
+        projection: &mut block.projection,
+        responses: &workspace.responses[responses],
+        buffers: (
+            &mut workspace.block_impulse[..],
+            &mut workspace.block_applied[..],
+        ),
+        relaxation,
+    };
     // A point contact's 3 rows and a face's 6 get their own copies of the loop, whose lengths
     // the compiler then knows.
-    let result = match bodies_and_rows.1.len() {
-        3 => update_block_rows::<P, 3>(
-            bodies_and_rows,
-            projection,
-            responses,
-            buffers,
-            relaxation,
-            push,
-        ),
-        6 => update_block_rows::<P, 6>(
-            bodies_and_rows,
-            projection,
-            responses,
-            buffers,
-            relaxation,
-            push,
-        ),
-        _ => update_block_rows::<P, 0>(
-            bodies_and_rows,
-            projection,
-            responses,
-            buffers,
-            relaxation,
-            push,
-        ),
+    let result = match update.rows.len() {
+        3 => update_block_rows::<P, 3>(update, push),
+        6 => update_block_rows::<P, 6>(update, push),
+        _ => update_block_rows::<P, 0>(update, push),
     };
     a.write_to(&mut bodies[ia]);
     b.write_to(&mut bodies[ib]);
@@ -671,16 +654,31 @@ impl Motion {
     }
 }
 
+/// What one block's row-by-row update works on: copies of its two bodies' velocities, its rows,
+/// projection and responses, and the solver's buffers for its impulses.
+struct BlockUpdate<'a, P> {
+    bodies: (&'a mut Motion, &'a mut Motion),
+    rows: &'a mut [crate::Row],
+    projection: &'a mut P,
+    responses: &'a [RowResponse],
+    buffers: (&'a mut [f64], &'a mut [f64]),
+    relaxation: f64,
+}
+
 /// [`update_block`]'s rows, on copies of the block's two bodies moved by `push`; `Err` on a
 /// non-finite step. `ROWS` is the block's row count, or 0 for any.
 fn update_block_rows<P: Projection, const ROWS: usize>(
-    ((a, b), rows): ((&mut Motion, &mut Motion), &mut [crate::Row]),
-    projection: &mut P,
-    responses: &[RowResponse],
-    (impulse, applied): (&mut [f64], &mut [f64]),
-    relaxation: f64,
+    update: BlockUpdate<'_, P>,
     push: impl Fn(&mut Motion, &mut Motion, &RowResponse, f64),
 ) -> Result<Change, ()> {
+    let BlockUpdate {
+        bodies: (a, b),
+        rows,
+        projection,
+        responses,
+        buffers: (impulse, applied),
+        relaxation,
+    } = update;
     let n = if ROWS == 0 { rows.len() } else { ROWS };
     let rows = &mut rows[..n];
     let responses = &responses[..n];
