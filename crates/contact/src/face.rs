@@ -8,16 +8,18 @@
 //! 3. tilt: the centre of pressure `p = (−τ2, τ1) / f3` (relative to `G`) must lie in the
 //!    polygon; if not, it moves to the nearest point `p̂` and `τ1 = p̂_y f3`, `τ2 = −p̂_x f3`.
 //!
-//! A segment thus carries only tilt about itself and its line's twist, and a point no torque at
-//! all: a point support is built as the vertex model's 3-row block (normal and friction at the
-//! point), the same constraint without the three rows its set bounds to zero. On a pile of 1000
-//! cubes half the contacts are points.
+//! A segment thus carries only tilt across its line and twist, and a point no torque at all: a
+//! segment support is built as a 5-row block with the one tilt it can carry
+//! ([`crate::segment`]), and a point support as the vertex model's 3-row block (normal and
+//! friction at the point) — the same constraints without the rows their sets bound to zero. On
+//! a pile of 1000 cubes half the contacts are points and a quarter segments.
 
 use nalgebra::Point2;
 use tatami_geometry::{ConvexPolygon, PolygonKind, Sector};
 use tatami_lcp::{Block, LinearSet, Problem, Projection, Row, RowBound};
 
 use crate::jacobian::{angular_jacobian, point_jacobian, point_motion, twist_rate};
+use crate::segment::SegmentProjection;
 use crate::target::normal_target;
 use crate::vertex;
 use crate::{Contact, ContactProjection, ContactSettings, FrictionCone, TwistRadius};
@@ -194,8 +196,9 @@ impl Projection for FaceProjection {
 }
 
 /// Appends one 6-row block at the support polygon's centroid and each row's penetration bias
-/// to `biases` — for a point support, the vertex model's 3-row block (see the module doc). The
-/// contact must be validated.
+/// to `biases` — for a segment the 5-row block of [`crate::segment`] (but with the
+/// parallel-torque variant, which reads both tilts), for a point support the vertex model's
+/// 3-row block (see the module doc). The contact must be validated.
 pub(crate) fn build(
     contact: &Contact,
     dt: f64,
@@ -206,6 +209,8 @@ pub(crate) fn build(
     if contact.support.kind() == PolygonKind::Point {
         return vertex::build(contact, dt, settings, problem, biases);
     }
+    let segment =
+        contact.support.kind() == PolygonKind::Segment && !settings.remove_parallel_torque;
     let frame = &contact.frame;
     let centre = contact.support.centroid();
     let p = frame.to_world(&centre);
@@ -224,36 +229,63 @@ pub(crate) fn build(
         dt,
         settings,
     );
+    // A segment takes its 5-row block (crate::segment), unless the paper's parallel-torque
+    // variant, which reads both tilts, is asked for: the torque axes, and the tilt bound.
+    let segment = segment.then(|| {
+        let v = contact.support.vertices();
+        let along = v[1] - v[0];
+        let s = (frame.tangent1 * along.x + frame.tangent2 * along.y).normalize();
+        (frame.normal.cross(&s), 0.5 * along.norm())
+    });
+    let (axes, rows) = match segment {
+        Some((u, _)) => ([u, frame.normal, frame.normal], crate::segment::ROWS),
+        None => ([frame.tangent1, frame.tangent2, frame.normal], ROWS),
+    };
     let start = problem.rows.len();
-    let rows = [
+    let forces = [
         (point_jacobian(contact, &p, &frame.normal), target.velocity),
         (point_jacobian(contact, &p, &frame.tangent1), 0.0),
         (point_jacobian(contact, &p, &frame.tangent2), 0.0),
-        (angular_jacobian(&frame.tangent1), 0.0),
-        (angular_jacobian(&frame.tangent2), 0.0),
-        (angular_jacobian(&frame.normal), 0.0),
     ];
-    problem
-        .rows
-        .extend(rows.into_iter().map(|(jacobian, target)| Row {
-            jacobian,
-            target,
-            impulse: 0.0,
-        }));
-    biases.extend([target.bias, 0.0, 0.0, 0.0, 0.0, 0.0]);
-    problem.blocks.push(Block {
-        body_a: contact.body_a,
-        body_b: contact.body_b,
-        rows: start..start + ROWS,
-        projection: ContactProjection::Face(FaceProjection {
+    let torques = axes[..rows - 3]
+        .iter()
+        .map(|axis| (angular_jacobian(axis), 0.0));
+    problem.rows.extend(
+        forces
+            .into_iter()
+            .chain(torques)
+            .map(|(jacobian, target)| Row {
+                jacobian,
+                target,
+                impulse: 0.0,
+            }),
+    );
+    biases.push(target.bias);
+    biases.extend(std::iter::repeat_n(0.0, rows - 1));
+    let friction = material.friction(slip, settings.slip_threshold);
+    let twist_per_normal = twist_friction * r_bar;
+    let projection = match segment {
+        Some((_, half_length)) => ContactProjection::Segment(SegmentProjection {
+            friction,
+            twist_per_normal,
+            half_length,
+            cone: settings.friction_cone,
+        }),
+        None => ContactProjection::Face(FaceProjection {
             support: contact.support.clone(),
             centre,
-            friction: material.friction(slip, settings.slip_threshold),
-            twist_per_normal: twist_friction * r_bar,
+            friction,
+            twist_per_normal,
             cone: settings.friction_cone,
             remove_parallel_torque: settings.remove_parallel_torque,
             hint: Sector::default(),
             clearance: contact.support.clearance(&centre),
         }),
+    };
+    problem.blocks.push(Block {
+        body_a: contact.body_a,
+        body_b: contact.body_b,
+        rows: start..start + rows,
+        projection,
     });
 }

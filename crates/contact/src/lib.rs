@@ -56,6 +56,7 @@ mod model;
 pub mod patch;
 mod point_friction;
 mod projection;
+pub mod segment;
 mod settings;
 mod target;
 pub mod vertex;

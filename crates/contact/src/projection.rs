@@ -5,6 +5,7 @@ use tatami_lcp::{LinearSet, Projection, RowBound};
 use crate::PointFriction;
 use crate::face::FaceProjection;
 use crate::patch::PatchProjection;
+use crate::segment::SegmentProjection;
 
 /// The projection of one contact block, by model.
 #[derive(Debug, Clone, PartialEq)]
@@ -15,6 +16,8 @@ pub enum ContactProjection {
     Patch(PatchProjection),
     /// A face-model contact: rows f3, f1, f2, τ1, τ2, τ3.
     Face(FaceProjection),
+    /// A face-model contact on a segment: rows f3, f1, f2, τu, τ3 ([`crate::segment`]).
+    Segment(SegmentProjection),
 }
 
 impl Projection for ContactProjection {
@@ -24,6 +27,7 @@ impl Projection for ContactProjection {
             Self::Point(p) => p.project(impulses, changed),
             Self::Patch(p) => p.project(impulses, changed),
             Self::Face(p) => p.project(impulses, changed),
+            Self::Segment(p) => p.project(impulses, changed),
         }
     }
 
@@ -33,6 +37,7 @@ impl Projection for ContactProjection {
             Self::Point(p) => p.tangent_pair(),
             Self::Patch(p) => p.tangent_pair(),
             Self::Face(p) => p.tangent_pair(),
+            Self::Segment(p) => p.tangent_pair(),
         }
     }
 
@@ -42,6 +47,7 @@ impl Projection for ContactProjection {
             Self::Point(p) => p.leading_normal_rows(),
             Self::Patch(p) => p.leading_normal_rows(),
             Self::Face(p) => p.leading_normal_rows(),
+            Self::Segment(p) => p.leading_normal_rows(),
         }
     }
 
@@ -49,6 +55,7 @@ impl Projection for ContactProjection {
     fn whole_block(&self) -> bool {
         match self {
             Self::Face(p) => p.whole_block(),
+            Self::Segment(p) => p.whole_block(),
             Self::Point(_) | Self::Patch(_) => false,
         }
     }
@@ -57,6 +64,7 @@ impl Projection for ContactProjection {
     fn admissible(&mut self, impulses: &[f64]) -> bool {
         match self {
             Self::Face(p) => p.admissible(impulses),
+            Self::Segment(p) => p.admissible(impulses),
             Self::Point(_) | Self::Patch(_) => false,
         }
     }
@@ -66,6 +74,7 @@ impl Projection for ContactProjection {
             Self::Point(p) => p.bound(row),
             Self::Patch(p) => p.bound(row),
             Self::Face(p) => p.bound(row),
+            Self::Segment(p) => p.bound(row),
         }
     }
 
@@ -74,6 +83,7 @@ impl Projection for ContactProjection {
             Self::Point(p) => p.linear_set(rows),
             Self::Patch(p) => p.linear_set(rows),
             Self::Face(p) => p.linear_set(rows),
+            Self::Segment(p) => p.linear_set(rows),
         }
     }
 }

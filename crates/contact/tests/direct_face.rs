@@ -1,7 +1,7 @@
 //! The direct solver as the exact reference of the face model: on random single-face problems
 //! (a body of random mass, inertia and motion on a random support polygon in a turned frame),
 //! its answer satisfies every face constraint exactly and agrees with PGS run to convergence
-//! with the same (box) friction cone.
+//! with the same (box) friction cone; likewise on random segments (the 5-row block).
 
 use nalgebra::{Matrix3, Point2, Point3, Rotation3, Vector3};
 use proptest::prelude::*;
@@ -58,6 +58,30 @@ fn case() -> impl Strategy<Value = Case> {
 /// The face problem of `case` (body 0 on the fixed body 1), after one step of gravity along
 /// the contact normal; `None` when the points are nearly collinear (no face).
 fn face_problem(case: &Case) -> Option<Problem<ContactProjection>> {
+    let points: Vec<Point2<f64>> = case
+        .points
+        .iter()
+        .map(|&(x, y)| Point2::new(x, y))
+        .collect();
+    let support = ConvexPolygon::from_points(&points).ok()?;
+    (support.area() >= 0.05).then(|| contact_problem(case, support))
+}
+
+/// The problem of `case` on the segment between its first two points; `None` when they are
+/// nearer than 0.2.
+fn segment_problem(case: &Case) -> Option<Problem<ContactProjection>> {
+    let ends = case.points[..2].iter().map(|&(x, y)| Point2::new(x, y));
+    let support = ConvexPolygon::from_points(&ends.collect::<Vec<_>>()).ok()?;
+    let length = match support.vertices() {
+        [a, b] => (b - a).norm(),
+        _ => 0.0,
+    };
+    (length >= 0.2).then(|| contact_problem(case, support))
+}
+
+/// Body 0 of `case` on the fixed body 1 over `support`, after one step of gravity along the
+/// contact normal.
+fn contact_problem(case: &Case, support: ConvexPolygon) -> Problem<ContactProjection> {
     let turn = Rotation3::from_scaled_axis(Vector3::from(case.frame_turn));
     let frame = ContactFrame {
         origin: Point3::new(0.3, -0.2, 0.1),
@@ -65,15 +89,6 @@ fn face_problem(case: &Case) -> Option<Problem<ContactProjection>> {
         tangent2: turn * Vector3::y(),
         normal: turn * Vector3::z(),
     };
-    let points: Vec<Point2<f64>> = case
-        .points
-        .iter()
-        .map(|&(x, y)| Point2::new(x, y))
-        .collect();
-    let support = ConvexPolygon::from_points(&points).ok()?;
-    if support.area() < 0.05 {
-        return None;
-    }
     let count = support.vertices().len();
     // The centre of mass above the polygon, a little off its centroid.
     let above = frame.to_world(&(support.centroid() + nalgebra::Vector2::new(0.1, -0.05)));
@@ -114,7 +129,7 @@ fn face_problem(case: &Case) -> Option<Problem<ContactProjection>> {
     ContactModel::Face
         .build(&contact, DT, &settings, &mut problem)
         .unwrap();
-    Some(problem)
+    problem
 }
 
 fn impulses(problem: &Problem<ContactProjection>) -> Vec<f64> {
@@ -163,6 +178,38 @@ proptest! {
         // edge or corner), PGS's fixed point is not the exact answer, so only an interior centre of
         // pressure, or none, is compared.
         prop_assume!(interior || f3 <= 1e-9);
+
+        let mut converged = problem;
+        let params = PgsParams { iterations: 10_000, ..PgsParams::default() };
+        pgs::solve_in_place(&mut converged, &mut PgsWorkspace::default(), &params).unwrap();
+        let reference = impulses(&converged);
+        let scale = reference.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+        for (k, (x, y)) in lambda.iter().zip(&reference).enumerate() {
+            prop_assert!((x - y).abs() <= 1e-6 * scale, "row {k}: direct {x} vs PGS {y}");
+        }
+    }
+
+    /// A segment's 5-row block: the direct answer keeps the centre of pressure on the segment
+    /// (`|τu| ≤ f3 L/2`) and every other bound, and agrees with converged PGS where no bound
+    /// but the cone's is active.
+    #[test]
+    fn direct_segment_answers_are_admissible_and_match_converged_pgs(case in case()) {
+        let Some(problem) = segment_problem(&case) else { return Ok(()) };
+        let ContactProjection::Segment(segment) = problem.blocks[0].projection else {
+            unreachable!("a segment block")
+        };
+        prop_assert_eq!(problem.rows.len(), 5);
+        let mut exact = problem.clone();
+        direct::solve(&mut exact, &direct::DirectParams::default()).unwrap();
+        let lambda = impulses(&exact);
+        let (f3, f1, f2, tilt, twist) = (lambda[0], lambda[1], lambda[2], lambda[3], lambda[4]);
+        prop_assert!(f3 >= -1e-9, "f3 = {f3}");
+        prop_assert!(f1.abs() <= segment.friction * f3 + 1e-9, "f1 {f1}");
+        prop_assert!(f2.abs() <= segment.friction * f3 + 1e-9, "f2 {f2}");
+        prop_assert!(tilt.abs() <= segment.half_length * f3 + 1e-9, "τu {tilt}");
+        prop_assert!(twist.abs() <= segment.twist_per_normal * f3 + 1e-9, "τ3 {twist}");
+        // As for faces: an active tilt bound (tipping over an end) is not compared.
+        prop_assume!(f3 <= 1e-9 || tilt.abs() < segment.half_length * f3 * (1.0 - 1e-6));
 
         let mut converged = problem;
         let params = PgsParams { iterations: 10_000, ..PgsParams::default() };

@@ -718,7 +718,13 @@ mod tests {
                 (None, 2)
             ]
         );
-        row_keys(ContactModel::Face, &features, 6, &mut keys);
+        // A segment's tilt and twist are named after its first vertex, a face's rows by rank.
+        row_keys(ContactModel::Face, &features, 5, &mut keys);
+        let (force, torque) = keys.split_at(3);
+        assert_eq!(force, [(None, 0), (None, 1), (None, 2)]);
+        assert_eq!(torque, [(Some(features[0]), 0), (Some(features[0]), 1)]);
+        let square = [0, 1, 2, 3].map(FeatureId::A);
+        row_keys(ContactModel::Face, &square, 6, &mut keys);
         assert_eq!(keys, (0..6).map(|r| (None, r)).collect::<Vec<_>>());
     }
 }

@@ -1,0 +1,174 @@
+//! A segment support in the face model (an edge on a face, a cylinder on its side): one 5-row
+//! block at the segment's midpoint `G`, rows `(f3, f1, f2, τu, τ3)`, kept physical by
+//! [`SegmentProjection`].
+//!
+//! A line of support resists tilting only about the in-plane axis `u = n × s` across it (`s`
+//! along the segment): the centre of pressure may sit anywhere on the segment, `x` from `G`
+//! along `s`, so `τu = −x f3` with `|x| ≤ L/2`. About the segment itself the support is a
+//! hinge, and the tilt there is zero. The face model's 6-row block carried both tilts about the
+//! frame's tangents and projected the centre of pressure back onto the line after every row
+//! update: one of the six rows was updated and projected away each sweep, three nearest-point
+//! searches ran per update, and a whole-block step never landed on the line, so a segment was
+//! always updated row by row. Here every bound is a box on one row (scaled by `f3`), a
+//! sticking segment is stepped whole like a face, and the admissible set is the same.
+//!
+//! Rows are named across steps ([`crate::ContactModel::row_vertex`]) as the face's for the
+//! force rows; the tilt and twist rows are named after the segment's first vertex, since `u`
+//! turns with the segment: a segment that becomes a face, or whose ends swap, starts them from
+//! zero rather than from a torque about another axis.
+
+use tatami_lcp::{LinearSet, Projection, RowBound};
+
+use crate::FrictionCone;
+use crate::face::MIN_NORMAL_IMPULSE;
+
+/// Rows of a segment block.
+pub const ROWS: usize = 5;
+
+/// Row indices within a segment block.
+const NORMAL: usize = 0;
+const FRICTION_1: usize = 1;
+const TILT: usize = 3;
+const TWIST: usize = 4;
+
+/// The projection of a segment block onto its admissible wrenches.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SegmentProjection {
+    /// Force friction coefficient for this step.
+    pub friction: f64,
+    /// `μ r̄`: the twist bound per unit normal impulse (m).
+    pub twist_per_normal: f64,
+    /// Half the segment's length: the tilt bound per unit normal impulse (m).
+    pub half_length: f64,
+    /// Box or circular friction bound.
+    pub cone: FrictionCone,
+}
+
+impl Projection for SegmentProjection {
+    #[inline]
+    fn project(&mut self, impulses: &mut [f64], _changed: usize) {
+        impulses[NORMAL] = impulses[NORMAL].max(0.0);
+        let f3 = impulses[NORMAL];
+        self.cone.clamp(&mut impulses[1..3], self.friction * f3);
+        let tilt = self.half_length * f3;
+        impulses[TILT] = impulses[TILT].max(-tilt).min(tilt);
+        let twist = self.twist_per_normal * f3;
+        impulses[TWIST] = impulses[TWIST].max(-twist).min(twist);
+    }
+
+    #[inline]
+    fn tangent_pair(&self) -> Option<usize> {
+        self.cone.tangent_pair(FRICTION_1)
+    }
+
+    /// `f3`; without it the segment carries no friction, tilt or twist.
+    #[inline]
+    fn leading_normal_rows(&self) -> usize {
+        NORMAL + 1
+    }
+
+    /// A sticking segment with its centre of pressure inside is solved in one step.
+    fn whole_block(&self) -> bool {
+        true
+    }
+
+    fn admissible(&mut self, impulses: &[f64]) -> bool {
+        let f3 = impulses[NORMAL];
+        if f3 > MIN_NORMAL_IMPULSE {
+            self.cone
+                .contains(&impulses[FRICTION_1..FRICTION_1 + 2], self.friction * f3)
+                && impulses[TILT].abs() <= self.half_length * f3
+                && impulses[TWIST].abs() <= self.twist_per_normal * f3
+        } else {
+            // Unloaded (or NaN): only the zero wrench is admissible.
+            impulses.iter().all(|&x| x == 0.0)
+        }
+    }
+
+    /// Only the normal row is a plain bound; the others scale with it (see
+    /// [`Projection::linear_set`]).
+    fn bound(&self, row: usize) -> Option<RowBound> {
+        (row == NORMAL).then_some(RowBound::NonNegative)
+    }
+
+    /// The admissible wrenches exactly: `(f3, τu) = Σ βₖ (1, −xₖ)` over the two ends,
+    /// `xₖ = ∓L/2`, `βₖ ≥ 0` the normal force at end `k`; friction and twist at `G`, bounded by
+    /// `μ f3` and `μ r̄ f3` with `f3 = Σ βₖ` — the face's set for a polygon of two vertices.
+    fn linear_set(&self, rows: usize) -> Option<LinearSet> {
+        let mut set = LinearSet::new(rows);
+        let ends: Vec<usize> = [self.half_length, -self.half_length]
+            .iter()
+            .map(|&tilt| set.generator(vec![(NORMAL, 1.0), (TILT, tilt)]))
+            .collect();
+        let friction: Vec<(usize, f64)> = ends.iter().map(|&e| (e, self.friction)).collect();
+        self.cone.add_to(&mut set, FRICTION_1, &friction);
+        let twist = ends.iter().map(|&e| (e, self.twist_per_normal)).collect();
+        set.symmetric(TWIST, twist);
+        Some(set)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn segment(cone: FrictionCone) -> SegmentProjection {
+        SegmentProjection {
+            friction: 0.5,
+            twist_per_normal: 0.5 * 0.25,
+            half_length: 0.5,
+            cone,
+        }
+    }
+
+    #[test]
+    fn the_centre_of_pressure_stays_on_the_segment() {
+        let mut p = segment(FrictionCone::Circle);
+        // f3 = 2: tilt within ±1, twist within ±0.25, friction within 1.
+        let mut impulses = [2.0, 3.0, 4.0, -5.0, 0.1];
+        p.project(&mut impulses, TILT);
+        assert_eq!(
+            impulses[TILT], -1.0,
+            "the centre of pressure at the far end"
+        );
+        assert!((impulses[1].hypot(impulses[2]) - 1.0).abs() < 1e-12);
+        assert_eq!(impulses[TWIST], 0.1);
+        assert!(p.admissible(&impulses));
+    }
+
+    #[test]
+    fn a_pulling_normal_leaves_nothing() {
+        let mut p = segment(FrictionCone::Box);
+        let mut impulses = [-1.0, 3.0, -0.4, 0.2, 0.1];
+        p.project(&mut impulses, NORMAL);
+        assert_eq!(impulses, [0.0; 5]);
+        assert!(p.admissible(&impulses));
+        assert!(!p.admissible(&[0.0, 0.0, 0.0, 0.1, 0.0]));
+    }
+
+    /// `admissible` says yes exactly where `project` changes nothing, on a grid of wrenches in
+    /// and out of the set.
+    #[test]
+    fn admissible_is_where_the_projection_is_the_identity() {
+        for cone in [FrictionCone::Circle, FrictionCone::Box] {
+            let mut p = segment(cone);
+            let values = [-1.5, -0.6, -0.2, 0.0, 0.3, 0.9, 2.0];
+            for f3 in [0.0, 0.5, 2.0] {
+                for f1 in values {
+                    for tilt in values {
+                        for twist in values {
+                            let impulses = [f3, f1, 0.4, tilt, twist * 0.3];
+                            let mut projected = impulses;
+                            p.project(&mut projected, NORMAL);
+                            assert_eq!(
+                                p.admissible(&impulses),
+                                projected == impulses,
+                                "{impulses:?} ({cone:?})"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
