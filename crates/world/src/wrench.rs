@@ -1,7 +1,7 @@
 //! The force-sensor read-out: what each contact transmitted over the last step, in world units.
 //!
 //! Whatever the model (a normal per corner, normals plus friction at the centre, or the face
-//! model's single 6-row block), a contact's rows sum to one wrench on body A. Written at the
+//! model's single block), a contact's rows sum to one wrench on body A. Written at the
 //! frame origin `O` as a force `F` and a torque `T_O`, its normal part `f = F·n` has its centre
 //! of pressure where the moment of `f n` equals the in-plane part of `T_O`:
 //! `p = O + n × T_O / f`. About `p` what is left of the torque is along `n` — the twist. For the
