@@ -127,8 +127,9 @@ impl Projection for FaceProjection {
     }
 
     /// A face of area: its six rows are solved together while the contact sticks with its
-    /// centre of pressure inside. Not a point or a segment, whose tilt torques are bounded to
-    /// zero or to a line, so a free step would always leave the set.
+    /// centre of pressure inside. Not a segment under the parallel-torque variant (the only
+    /// segment built as a face block), whose tilts are bounded to a line, so a free step would
+    /// always leave the set; nor with that variant at all, which is not a box on each row.
     fn whole_block(&self) -> bool {
         self.support.kind() == PolygonKind::Polygon && !self.remove_parallel_torque
     }
