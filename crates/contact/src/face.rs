@@ -14,7 +14,7 @@
 //! friction at the point) — the same constraints without the rows their sets bound to zero. On
 //! a pile of 1000 cubes half the contacts are points and a quarter segments.
 
-use nalgebra::Point2;
+use nalgebra::{Point2, Vector3};
 use tatami_geometry::{ConvexPolygon, PolygonKind, Sector};
 use tatami_lcp::{Block, LinearSet, Problem, Projection, Row, RowBound};
 
@@ -127,9 +127,9 @@ impl Projection for FaceProjection {
     }
 
     /// A face of area: its six rows are solved together while the contact sticks with its
-    /// centre of pressure inside. Not a segment under the parallel-torque variant (the only
-    /// segment built as a face block), whose tilts are bounded to a line, so a free step would
-    /// always leave the set; nor with that variant at all, which is not a box on each row.
+    /// centre of pressure inside. Not a segment (built as a face block only under the
+    /// parallel-torque variant), whose tilts are bounded to a line that a free step would
+    /// always leave; nor under that variant at all.
     fn whole_block(&self) -> bool {
         self.support.kind() == PolygonKind::Polygon && !self.remove_parallel_torque
     }
@@ -210,9 +210,17 @@ pub(crate) fn build(
     if contact.support.kind() == PolygonKind::Point {
         return vertex::build(contact, dt, settings, problem, biases);
     }
-    let segment =
-        contact.support.kind() == PolygonKind::Segment && !settings.remove_parallel_torque;
     let frame = &contact.frame;
+    // A segment takes its 5-row block (crate::segment): the tilt axis across it and the tilt
+    // bound; not with the paper's parallel-torque variant, which reads both tilts.
+    let segment = (contact.support.kind() == PolygonKind::Segment
+        && !settings.remove_parallel_torque)
+        .then(|| {
+            let v = contact.support.vertices();
+            let along = v[1] - v[0];
+            let s = (frame.tangent1 * along.x + frame.tangent2 * along.y).normalize();
+            (frame.normal.cross(&s), 0.5 * along.norm())
+        });
     let centre = contact.support.centroid();
     let p = frame.to_world(&centre);
     let (normal_speed, slip) = point_motion(contact, &problem.bodies, &p);
@@ -230,27 +238,20 @@ pub(crate) fn build(
         dt,
         settings,
     );
-    // A segment takes its 5-row block (crate::segment), unless the paper's parallel-torque
-    // variant, which reads both tilts, is asked for: the torque axes, and the tilt bound.
-    let segment = segment.then(|| {
-        let v = contact.support.vertices();
-        let along = v[1] - v[0];
-        let s = (frame.tangent1 * along.x + frame.tangent2 * along.y).normalize();
-        (frame.normal.cross(&s), 0.5 * along.norm())
-    });
-    let (axes, rows) = match segment {
-        Some((u, _)) => ([u, frame.normal, frame.normal], crate::segment::ROWS),
-        None => ([frame.tangent1, frame.tangent2, frame.normal], ROWS),
+    let face_axes = [frame.tangent1, frame.tangent2, frame.normal];
+    let segment_axes = segment.map(|(u, _)| [u, frame.normal]);
+    let torque_axes: &[Vector3<f64>] = match &segment_axes {
+        Some(axes) => axes,
+        None => &face_axes,
     };
+    let rows = 3 + torque_axes.len();
     let start = problem.rows.len();
     let forces = [
         (point_jacobian(contact, &p, &frame.normal), target.velocity),
         (point_jacobian(contact, &p, &frame.tangent1), 0.0),
         (point_jacobian(contact, &p, &frame.tangent2), 0.0),
     ];
-    let torques = axes[..rows - 3]
-        .iter()
-        .map(|axis| (angular_jacobian(axis), 0.0));
+    let torques = torque_axes.iter().map(|axis| (angular_jacobian(axis), 0.0));
     problem.rows.extend(
         forces
             .into_iter()

@@ -213,7 +213,7 @@ proptest! {
         let ContactProjection::Segment(segment) = problem.blocks[0].projection else {
             unreachable!("a segment block")
         };
-        prop_assert_eq!(problem.rows.len(), 5);
+        prop_assert_eq!(problem.rows.len(), tatami_contact::segment::ROWS);
         let mut exact = problem.clone();
         direct::solve(&mut exact, &direct::DirectParams::default()).unwrap();
         let lambda = impulses(&exact);

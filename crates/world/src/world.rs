@@ -3,7 +3,7 @@
 use std::ops::Range;
 use std::time::Instant;
 
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::Vector3;
 use tatami_contact::{Contact, ContactProjection};
 use tatami_lcp::direct::{self, DirectInfo};
 use tatami_lcp::pgs::{self, PgsParams, PgsWorkspace, Record, Support, WarmStart};
@@ -540,26 +540,21 @@ impl VelocitySolve<'_> {
     /// pass's reactions, which can push its load up as if off a fixed floor; undone then, the
     /// pass can only take energy out (a falling stack stopped on its base).
     fn guarded_shock_pass(&mut self) -> Result<(), LcpError> {
-        // The bodies' world inertias, for both energies (zero for the others).
-        let inertias = &mut self.set_aside.inertias;
-        inertias.clear();
-        inertias.extend(self.bodies.iter().map(|b| {
-            if b.is_dynamic() {
-                b.inertia_world()
-            } else {
-                Matrix3::zeros()
-            }
-        }));
-        let energy = |bodies: &[Body], inertias: &[Matrix3<f64>], solved: &[SolverBody]| {
-            (bodies.iter().zip(inertias).zip(solved))
-                .filter(|((b, _), _)| b.is_dynamic())
-                .map(|((b, i), s)| b.kinetic_energy_at(i, &s.linear_velocity, &s.angular_velocity))
-                .sum::<f64>()
-        };
-        let before = energy(self.bodies, &self.set_aside.inertias, &self.problem.bodies);
         self.set_aside.save(self.problem);
         pgs::shock_propagation(self.problem, self.workspace, self.order)?;
-        if energy(self.bodies, &self.set_aside.inertias, &self.problem.bodies) > before {
+        // The dynamic bodies' kinetic energies before the pass (set aside) and after it, each
+        // body's world inertia computed once for both.
+        let (mut before, mut after) = (0.0, 0.0);
+        let velocities = self.set_aside.bodies.iter().zip(&self.problem.bodies);
+        for (body, (was, now)) in self.bodies.iter().zip(velocities) {
+            if !body.is_dynamic() {
+                continue;
+            }
+            let inertia = body.inertia_world();
+            before += body.kinetic_energy_at(&inertia, &was.linear_velocity, &was.angular_velocity);
+            after += body.kinetic_energy_at(&inertia, &now.linear_velocity, &now.angular_velocity);
+        }
+        if after > before {
             self.set_aside.restore(self.problem);
         }
         Ok(())
@@ -647,8 +642,6 @@ const POSITION_PASS_BESIDE_ROWS: usize = 1024;
 struct SolvedState {
     bodies: Vec<SolverBody>,
     impulses: Vec<f64>,
-    /// Scratch: the bodies' world inertias, which the energy guard reads twice.
-    inertias: Vec<Matrix3<f64>>,
 }
 
 impl SolvedState {
