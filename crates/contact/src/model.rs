@@ -87,15 +87,14 @@ impl ContactModel {
     /// The support vertex that row `row` (counted from the contact's first row) of
     /// [`ContactModel::build`] acts at, for a contact of `vertices` support vertices; `None` for
     /// rows of the whole contact (the face model's, the patch model's friction and twist).
-    /// With the vertex's feature id this names a row across steps, for exact warm starting. The
-    /// face model's segment names its tilt and twist rows after its first vertex: their axis
-    /// turns with the segment, so they must not take a face's torques (nor, if the segment's
-    /// ends swap, its own of the step before).
+    /// With the vertex's feature id this names a row across steps, for exact warm starting of
+    /// the vertex and patch models; the face model's block is carried whole instead, as a
+    /// [`ContactImpulse`](crate::ContactImpulse).
     pub fn row_vertex(self, vertices: usize, row: usize) -> Option<usize> {
         match self {
             Self::Vertex => Some(row / vertex::ROWS_PER_VERTEX),
             Self::Patch => (row < vertices).then_some(row),
-            Self::Face => (vertices == 2 && row >= 3).then_some(0),
+            Self::Face => None,
         }
     }
 }

@@ -12,10 +12,9 @@
 //! always updated row by row. Here every bound is a box on one row (scaled by `f3`), a
 //! sticking segment is stepped whole like a face, and the admissible set is the same.
 //!
-//! Rows are named across steps ([`crate::ContactModel::row_vertex`]) as the face's for the
-//! force rows; the tilt and twist rows are named after the segment's first vertex, since `u`
-//! turns with the segment: a segment that becomes a face, or whose ends swap, starts them from
-//! zero rather than from a torque about another axis.
+//! Across steps the block is carried as the impulse it applied ([`crate::ContactImpulse`]):
+//! `u` turns with the segment, so its tilt is read anew on the next step's axes, whether the
+//! segment stays one (its ends swapped or clipped by other edges) or becomes a face or a point.
 
 use tatami_lcp::{LinearSet, Projection, RowBound};
 

@@ -223,8 +223,9 @@ impl World {
     /// Advances the world by `dt` seconds, in stages: collision → contact rows → velocity
     /// solve → position correction → integrate.
     ///
-    /// The velocity solve is warm-started from the contact set (exact by feature id) when the
-    /// solver's settings say so, as they do by default.
+    /// The velocity solve is warm-started from the contact set (the face model's blocks from
+    /// the impulse each applied, the other models' rows by feature id) when the solver's
+    /// settings say so, as they do by default.
     ///
     /// A contact deeper than the slop is pushed out at up to `max_depenetration_speed`. Up to
     /// `max_velocity_bias` of the push (none by default) is a target of the velocity solve (a

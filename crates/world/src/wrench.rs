@@ -8,7 +8,7 @@
 //! face model `p` is the ZMP after its projection onto the support polygon.
 
 use nalgebra::{Point3, Vector3};
-use tatami_contact::Contact;
+use tatami_contact::{Contact, ContactImpulse};
 use tatami_lcp::Row;
 
 use crate::BodyId;
@@ -62,14 +62,10 @@ impl ContactWrench {
     /// The wrench of `contact` whose rows, solved over a step of `dt`, are `rows`.
     pub(crate) fn new(contact: &Contact, rows: &[Row], dt: f64, ids: [BodyId; 2]) -> Self {
         let frame = &contact.frame;
-        let (mut impulse, mut angular) = (Vector3::zeros(), Vector3::zeros());
-        for row in rows {
-            impulse += row.jacobian.linear_a * row.impulse;
-            angular += row.jacobian.angular_a * row.impulse;
-        }
-        let force = impulse / dt;
+        let impulse = ContactImpulse::of_rows(rows, contact.centre_a);
+        let force = impulse.linear / dt;
         // About the frame origin rather than A's centre of mass.
-        let torque_origin = angular / dt + (contact.centre_a - frame.origin).cross(&force);
+        let torque_origin = impulse.angular / dt + (contact.centre_a - frame.origin).cross(&force);
         let n = frame.normal;
         let normal_force = force.dot(&n);
         let offset = if normal_force > 0.0 {
