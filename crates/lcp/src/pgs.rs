@@ -63,7 +63,8 @@
 //! centre of pressure couples three rows (τ₁, τ₂, f₃) and cannot be clamped one row at a time.
 //! Box2D relaxes and warm-starts; Jolt warm-starts; the paper does neither, so both are options
 //! of this solver, off in [`PgsParams::default`]; `tatami-world` warm-starts by default, from
-//! impulses it matches exactly by contact feature.
+//! the impulse each face-model block applied last step (other models' rows matched by contact
+//! feature).
 
 use std::ops::Range;
 

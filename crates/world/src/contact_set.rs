@@ -147,6 +147,17 @@ enum Solved {
     Face(ContactImpulse),
 }
 
+impl Solved {
+    /// Whether it starts the rows of a pair under `model`.
+    fn starts(&self, model: ContactModel) -> bool {
+        match self {
+            Self::Nothing => false,
+            Self::Rows(solved_with, _) => *solved_with == model,
+            Self::Face(_) => model == ContactModel::Face,
+        }
+    }
+}
+
 /// One touching pair.
 #[derive(Debug, Clone)]
 struct Entry {
@@ -399,12 +410,18 @@ impl ContactSet {
         problem: &mut Problem<ContactProjection>,
         weight_per_mass: &Vector3<f64>,
     ) {
-        let estimate = self.loads.estimate(
-            self.entries.iter().map(|e| &e.contact),
-            &problem.bodies,
-            weight_per_mass,
-        );
-        for (entry, &load) in self.entries.iter().zip(estimate) {
+        // The estimate goes down every contact: only made when a pair needs it.
+        let unstarted = |e: &Entry| !e.state.blocks.is_empty() && !e.state.last.starts(model);
+        let estimate = if self.entries.iter().any(unstarted) {
+            self.loads.estimate(
+                self.entries.iter().map(|e| &e.contact),
+                &problem.bodies,
+                weight_per_mass,
+            )
+        } else {
+            &[]
+        };
+        for (index, entry) in self.entries.iter().enumerate() {
             if entry.state.blocks.is_empty() {
                 continue;
             }
@@ -418,14 +435,14 @@ impl ContactSet {
                     &self.impulses[stored.clone()]
                 }
                 _ => {
-                    spread_over_normal_rows(problem, &entry.state.blocks, load);
+                    spread_over_normal_rows(problem, &entry.state.blocks, estimate[index]);
                     continue;
                 }
             };
             row_keys(model, &entry.state.features, rows.len(), &mut self.keys);
             for (index, (row, key)) in problem.rows[rows].iter_mut().zip(&self.keys).enumerate() {
-                // Where the rows are as they were (the face model's always are), a row's key is
-                // at its own index: one comparison instead of a search (the keys are unique).
+                // Where the rows are as they were, a row's key is at its own index: one
+                // comparison instead of a search (the keys are unique).
                 let found = match stored.get(index) {
                     Some((k, _)) if k == key => Some(index),
                     _ => stored.binary_search_by(|(k, _)| k.cmp(key)).ok(),

@@ -29,8 +29,9 @@ pub const PGS_TOLERANCE: f64 = 1e-4;
 
 impl Default for Solver {
     /// PGS with up to 15 sweeps, warm-started from the contact set's impulses of the last step
-    /// (exact by feature id): the solver's residual then carries over instead of sinking stacks
-    /// anew every step; it stops early at [`PGS_TOLERANCE`].
+    /// (a face-model block from the impulse it applied, other rows by feature id): the
+    /// solver's residual then carries over instead of sinking stacks anew every step; it stops
+    /// early at [`PGS_TOLERANCE`].
     fn default() -> Self {
         Self::Pgs(PgsParams {
             warm_start: WarmStart::On,

@@ -260,7 +260,7 @@ fn report(traces: &[Trace], files: Vec<&'static str>) -> Outcome {
         "**Paper.** The face contact holds where per-vertex contacts rock and walk; shown on \
          symmetric towers only.\n\n\
          **Tatami.** The holding scenes with the default settings (up to 15 PGS sweeps \
-         warm-started by contact feature, the energy-guarded shock pass, the penetration push in \
+         warm-started from the last step's impulses, the energy-guarded shock pass, the penetration push in \
          a position pass), under each model, and rapier3d-f64 (its defaults, sleeping off) on the \
          same files. Drift = \
          the largest displacement of any body over the window the tests use (from 2 s on for the \
