@@ -179,10 +179,9 @@ pub(crate) struct ContactSet {
     /// [`ContactSet::end`].
     apart: Vec<KeptApart>,
     /// The vertex and patch models' last solve impulses by key, one run per pair (its
-    /// [`Solved::Rows`]),
-    /// written in set order by [`ContactSet::store`]: the warm start and the store go through
-    /// memory in sequence, where a vector per pair cost a cache miss each (the two passes took
-    /// 0.6 ms of the 1000-cube pile's step).
+    /// [`Solved::Rows`]), written in set order by [`ContactSet::store`]: the warm start and the
+    /// store go through memory in sequence, where a vector per pair cost a cache miss each (the
+    /// two passes took 0.6 ms of the 1000-cube pile's step).
     impulses: Vec<(RowKey, f64)>,
     /// Scratch: the next store's [`ContactSet::impulses`].
     next_impulses: Vec<(RowKey, f64)>,
