@@ -14,7 +14,7 @@ use crate::broad_phase::SweepAndPrune;
 use crate::contact_set::{Computed, ContactSet};
 use crate::parallel;
 use crate::parry_bridge::{self, Collider};
-use crate::support::{FeatureAngle, FeaturePoint, Outline, support};
+use crate::support::{FeatureAngle, FeaturePoint, Outline, VertexIds, support};
 
 /// Reused buffers of the collision stage.
 #[derive(Debug, Default, Clone)]
@@ -79,17 +79,22 @@ pub(crate) struct BodyGeometry {
 }
 
 /// Brings `set` up to date: one contact per pair closer than `margin`, ordered from the highest
-/// to the lowest along `gravity`.
+/// to the lowest along `gravity`, its support vertices named as `ids` asks.
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the bodies, the collision settings, and the stage's buffers and output"
+)]
 pub(crate) fn detect(
     bodies: &[Body],
     geometry: &[BodyGeometry],
     margin: f64,
     feature_angle: f64,
+    ids: VertexIds,
     gravity: &Vector3<f64>,
     workspace: &mut CollisionWorkspace,
     set: &mut ContactSet,
 ) {
-    set.begin(margin, feature_angle);
+    set.begin(margin, feature_angle, ids);
     let feature_angle = FeatureAngle::new(feature_angle);
     let CollisionWorkspace {
         boxes,
@@ -117,6 +122,7 @@ pub(crate) fn detect(
             pair,
             margin,
             &feature_angle,
+            ids,
             features,
             depths,
         )
@@ -189,9 +195,10 @@ pub(crate) fn detect(
     set.end(gravity);
 }
 
-/// The contact of pair `(i, j)` at the bodies' current poses, with its feature ids and the poses
-/// it was computed at; or, when the bodies are farther apart than `margin`, the face normal that
-/// shows it if one does. The contact's depths go into `depths` (see [`support`]).
+/// The contact of pair `(i, j)` at the bodies' current poses, with its feature ids (if `ids`
+/// asks) and the poses it was computed at; or, when the bodies are farther apart than `margin`,
+/// the face normal that shows it if one does. The contact's depths go into `depths` (see
+/// [`support`]).
 #[expect(
     clippy::too_many_arguments,
     reason = "the pass's read-only inputs, the thread's scratch and the recycled buffer"
@@ -203,6 +210,7 @@ fn contact_of(
     (i, j): (usize, usize),
     margin: f64,
     feature_angle: &FeatureAngle,
+    ids: VertexIds,
     features: &mut Features,
     depths: Vec<f64>,
 ) -> Found {
@@ -238,7 +246,7 @@ fn contact_of(
         feature_angle,
         &mut features.b,
     );
-    let Some(s) = support(&features.a, &features.b, &normal, depths) else {
+    let Some(s) = support(&features.a, &features.b, &normal, depths, ids) else {
         return Found::Nothing;
     };
     let contact = Contact {
@@ -327,6 +335,7 @@ mod tests {
                         (i, j),
                         margin,
                         &angle,
+                        VertexIds::for_model(world.settings.model),
                         &mut features,
                         Vec::new(),
                     );

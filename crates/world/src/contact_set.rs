@@ -35,7 +35,7 @@ use tatami_lcp::{Problem, Projection};
 use crate::apart::{Apart, Placement};
 use crate::load_estimate::LoadEstimate;
 use crate::parallel;
-use crate::support::{FeatureId, FeatureIds};
+use crate::support::{FeatureId, FeatureIds, VertexIds};
 
 /// Largest motion of either body (m; a turn counts as rad × the body's size) since a pair's
 /// contact was computed for it to be kept: far below any depth that matters (the slop is 2 mm,
@@ -186,7 +186,7 @@ pub(crate) struct ContactSet {
     /// Scratch: the next store's [`ContactSet::impulses`].
     next_impulses: Vec<(RowKey, f64)>,
     /// Collision settings the contacts were computed with; others invalidate them.
-    computed_with: (f64, f64),
+    computed_with: (f64, f64, VertexIds),
     /// Scratch: row keys of one contact.
     keys: Vec<RowKey>,
     /// Scratch: the entries' sort keys ([`sort_in_place`]).
@@ -198,15 +198,16 @@ pub(crate) struct ContactSet {
 }
 
 impl ContactSet {
-    /// Starts a collision pass with the given contact margin and feature angle: contacts computed
-    /// with other values are dropped, and every pair is marked unmet.
-    pub(crate) fn begin(&mut self, margin: f64, feature_angle: f64) {
-        if self.computed_with != (margin, feature_angle) {
+    /// Starts a collision pass with the given contact margin, feature angle and naming of
+    /// support vertices: contacts computed with others are dropped (a model that keys its rows
+    /// by vertex then finds every contact named), and every pair is marked unmet.
+    pub(crate) fn begin(&mut self, margin: f64, feature_angle: f64, ids: VertexIds) {
+        if self.computed_with != (margin, feature_angle, ids) {
             self.entries.clear();
             self.held.clear();
             self.apart.clear();
             self.impulses.clear();
-            self.computed_with = (margin, feature_angle);
+            self.computed_with = (margin, feature_angle, ids);
         }
         self.met.clear();
         self.met.resize(self.entries.len(), false);
@@ -690,6 +691,72 @@ mod tests {
         }
         // The falling cube lands meanwhile: its pair is stored while the stack's are kept.
         assert_eq!(stored(&world).len(), 3);
+    }
+
+    /// Support vertices are named only under a model that keys its rows by them: a cube
+    /// resting on a box under the face model has no names; switched to the vertex model, its
+    /// contact is found again with a name for each of its four corners, and the vertex model's
+    /// rows then start from the impulses their last solve left; switched back, the names go.
+    #[test]
+    fn support_vertices_are_named_only_for_the_models_that_key_rows_by_them() {
+        use crate::{BodyDesc, Shape, World, WorldSettings};
+        let mut world = World::builder()
+            .body(BodyDesc::fixed(Shape::cuboid([4.0, 4.0, 1.0])).position([0.0, 0.0, -0.5]))
+            .body(BodyDesc::dynamic(Shape::cuboid([1.0; 3])).position([0.3, 0.2, 0.5]))
+            .build()
+            .expect("a valid scene");
+        let dt = 1.0 / 60.0;
+        let names = |world: &World| -> Vec<FeatureIds> {
+            let entries = &world.contact_set.entries;
+            entries.iter().map(|e| e.state.features.clone()).collect()
+        };
+        let switch = |world: &mut World, model: ContactModel| {
+            let settings = WorldSettings {
+                model,
+                ..*world.settings()
+            };
+            world.set_settings(settings).expect("valid settings");
+        };
+        for _ in 0..10 {
+            world.step(dt).expect("a step");
+        }
+        assert_eq!(
+            names(&world),
+            vec![FeatureIds::new()],
+            "the face model names nothing"
+        );
+        switch(&mut world, ContactModel::Vertex);
+        world.step(dt).expect("a step");
+        let named = names(&world);
+        assert_eq!(named.len(), 1);
+        let mut corners = named[0].to_vec();
+        corners.sort();
+        corners.dedup();
+        assert_eq!(
+            corners.len(),
+            4,
+            "four corners, each named once: {corners:?}"
+        );
+        // Body A is the floor (the lower index), B the cube.
+        assert!(
+            corners.iter().all(|id| matches!(id, FeatureId::B(_))),
+            "the cube's corners"
+        );
+        // The next step's rows start from the impulses the last solve left, row by row.
+        world.step(dt).expect("a step");
+        let solved: Vec<f64> = world.problem().rows.iter().map(|r| r.impulse).collect();
+        world.prepare_step(dt).expect("collision");
+        let weight = world.gravity() * dt;
+        world
+            .contact_set
+            .warm_start(ContactModel::Vertex, &mut world.problem, &weight);
+        let started: Vec<f64> = world.problem().rows.iter().map(|r| r.impulse).collect();
+        assert_eq!(started, solved);
+        assert!(solved.iter().step_by(3).all(|&normal| normal > 0.0));
+        world.step(dt).expect("a step");
+        switch(&mut world, ContactModel::Face);
+        world.step(dt).expect("a step");
+        assert_eq!(names(&world), vec![FeatureIds::new()]);
     }
 
     /// A segment whose ends are clipped by other edges from one step to the next (its end

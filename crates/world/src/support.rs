@@ -7,18 +7,21 @@
 //! clipped against each other (Sutherland–Hodgman; a segment is clipped parametrically). A
 //! 45°-twisted box on a box therefore gives an octagon, an edge a segment, a corner a point.
 //!
-//! Every vertex of the result carries a [`FeatureId`]: which vertex of A's or B's feature it
-//! is, or which edge of each crosses there. It is found after clipping, by position, rather than
-//! threaded through the hull and clipping code, which reorder, drop and recompute points. A
-//! vertex within [`SAME_POINT`] of the polygon's size of a feature point takes that point's id
-//! (A's before B's): on two aligned stacked boxes each overlap corner is A's corner, B's corner
-//! or a crossing of their edges depending on the sign of a sub-millimetre offset, and a name
-//! that flickered with it would throw the corner's warm start away every other step.
+//! Under the vertex and patch models, which carry their rows' impulses from step to step by the
+//! vertex they act at, every vertex of the result carries a [`FeatureId`] ([`VertexIds`]; the
+//! face model carries its block whole and skips the names, about a tenth of a box pair's
+//! contact): which vertex of A's or B's feature it is, or which edge of each crosses there. It
+//! is found after clipping, by position, rather than threaded through the hull and clipping
+//! code, which reorder, drop and recompute points. A vertex within [`SAME_POINT`] of the
+//! polygon's size of a feature point takes that point's id (A's before B's): on two aligned
+//! stacked boxes each overlap corner is A's corner, B's corner or a crossing of their edges
+//! depending on the sign of a sub-millimetre offset, and a name that flickered with it would
+//! throw the corner's warm start away every other step.
 
 use nalgebra::{Matrix3, Point2, Point3, UnitQuaternion, Vector3};
 use smallvec::SmallVec;
 use std::sync::OnceLock;
-use tatami_contact::ContactFrame;
+use tatami_contact::{ContactFrame, ContactModel};
 use tatami_geometry::nearest::closest_point_on_segment;
 use tatami_geometry::polygon::ring_next;
 use tatami_geometry::{ConvexPolygon, PolygonKind, signed_area};
@@ -255,7 +258,32 @@ fn keep_within_angle(
     points.truncate(kept);
 }
 
-/// A support polygon with its frame, per-vertex depths and per-vertex feature ids.
+/// Whether [`support`] names each vertex of the polygon by its [`FeatureId`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) enum VertexIds {
+    /// Each vertex named.
+    #[default]
+    Named,
+    /// No names: finding them costs a tenth of a box pair's contact (a search of both
+    /// features' points and edges for every vertex, and of each feature's points for every
+    /// outline vertex), and the face model needs none.
+    Unnamed,
+}
+
+impl VertexIds {
+    /// What `model` needs: the vertex and patch models carry their rows' impulses from step to
+    /// step by the vertex they act at; the face model carries its block whole
+    /// ([`tatami_contact::ContactImpulse`]).
+    pub(crate) fn for_model(model: ContactModel) -> Self {
+        match model {
+            ContactModel::Vertex | ContactModel::Patch => Self::Named,
+            ContactModel::Face => Self::Unnamed,
+        }
+    }
+}
+
+/// A support polygon with its frame, per-vertex depths and per-vertex feature ids (none when
+/// not asked for).
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Support {
     pub frame: ContactFrame,
@@ -266,18 +294,19 @@ pub(crate) struct Support {
 
 /// The support polygon of A's `feature_a` resting on B's `feature_b`, with `normal` (unit) from B
 /// into A, its depths written into `depths` (cleared first: the buffer of the contact it
-/// replaces, so that a moved pair's contact is recomputed without an allocation). `None` only
-/// if a feature is empty or not finite.
+/// replaces, so that a moved pair's contact is recomputed without an allocation), and each
+/// vertex's feature id if `ids` asks for them. `None` only if a feature is empty or not finite.
 pub(crate) fn support(
     feature_a: &[FeaturePoint],
     feature_b: &[FeaturePoint],
     normal: &Vector3<f64>,
     mut depths: Vec<f64>,
+    ids: VertexIds,
 ) -> Option<Support> {
     let (a0, b0) = (feature_a.first()?, feature_b.first()?);
     let frame = ContactFrame::from_normal(nalgebra::center(&a0.point, &b0.point), *normal).ok()?;
-    let surface_a = Surface::fit(&frame, feature_a)?;
-    let surface_b = Surface::fit(&frame, feature_b)?;
+    let surface_a = Surface::fit(&frame, feature_a, ids)?;
+    let surface_b = Surface::fit(&frame, feature_b, ids)?;
     let mut points = overlap(&surface_a.outline, &surface_b.outline);
     if points.is_empty() {
         // Touching only at the boundary within rounding: the nearest point of A's outline.
@@ -295,13 +324,18 @@ pub(crate) fn support(
             .iter()
             .map(|p| surface_b.height(p) - surface_a.height(p)),
     );
-    let (lo, hi) = polygon.bounding_box();
-    let tolerance = polygon.tolerance().max(SAME_POINT * (hi - lo).norm());
-    let features = polygon
-        .vertices()
-        .iter()
-        .map(|p| identify(p, &surface_a, &surface_b, tolerance))
-        .collect();
+    let features = match ids {
+        VertexIds::Named => {
+            let (lo, hi) = polygon.bounding_box();
+            let tolerance = polygon.tolerance().max(SAME_POINT * (hi - lo).norm());
+            polygon
+                .vertices()
+                .iter()
+                .map(|p| identify(p, &surface_a, &surface_b, tolerance))
+                .collect()
+        }
+        VertexIds::Unnamed => FeatureIds::new(),
+    };
     Some(Support {
         frame,
         polygon,
@@ -336,9 +370,9 @@ fn identify(p: &Point2<f64>, a: &Surface, b: &Surface, tolerance: f64) -> Featur
     }
 }
 
-/// A feature seen from the contact plane: its outline with the id of each outline vertex, and
-/// its height above the plane as an affine function `h = c₀ + c₁ x + c₂ y` (least squares over
-/// its points; exact for a face).
+/// A feature seen from the contact plane: its outline with the id of each outline vertex (when
+/// named, [`VertexIds`]), and its height above the plane as an affine function
+/// `h = c₀ + c₁ x + c₂ y` (least squares over its points; exact for a face).
 struct Surface {
     outline: ConvexPolygon,
     ids: Points<u32>,
@@ -346,20 +380,23 @@ struct Surface {
 }
 
 impl Surface {
-    fn fit(frame: &ContactFrame, feature: &[FeaturePoint]) -> Option<Self> {
+    fn fit(frame: &ContactFrame, feature: &[FeaturePoint], names: VertexIds) -> Option<Self> {
         let plane: Points<Point2<f64>> = feature.iter().map(|f| frame.to_plane(&f.point)).collect();
         let outline = ConvexPolygon::from_points(&plane).ok()?;
         // The hull's vertices are copies of its input points.
-        let ids = outline
-            .vertices()
-            .iter()
-            .map(|v| {
-                plane
-                    .iter()
-                    .position(|p| p == v)
-                    .map_or(0, |k| feature[k].id)
-            })
-            .collect();
+        let ids = match names {
+            VertexIds::Named => outline
+                .vertices()
+                .iter()
+                .map(|v| {
+                    plane
+                        .iter()
+                        .position(|p| p == v)
+                        .map_or(0, |k| feature[k].id)
+                })
+                .collect(),
+            VertexIds::Unnamed => Points::new(),
+        };
         let heights = feature
             .iter()
             .map(|f| (f.point - frame.origin).dot(&frame.normal));
@@ -526,14 +563,14 @@ mod tests {
     fn twisted_squares_overlap_in_a_regular_octagon() {
         let a = square(1.0, std::f64::consts::FRAC_PI_4, 0.0);
         let b = square(1.0, 0.0, 0.0);
-        let s = support(&a, &b, &Vector3::z(), Vec::new()).unwrap();
+        let s = support(&a, &b, &Vector3::z(), Vec::new(), VertexIds::Named).unwrap();
         assert_eq!(s.polygon.vertices().len(), 8);
         // Regular octagon with inradius 1: area 8 tan(π/8).
         let expected = 8.0 * (std::f64::consts::PI / 8.0).tan();
         assert!((s.polygon.area() - expected).abs() < 1e-12);
         assert!(s.depths.iter().all(|d| d.abs() < 1e-12));
         // A recycled buffer (a replaced contact's depths) is cleared before it is filled.
-        let recycled = support(&a, &b, &Vector3::z(), vec![7.0; 12]).unwrap();
+        let recycled = support(&a, &b, &Vector3::z(), vec![7.0; 12], VertexIds::Named).unwrap();
         assert_eq!(recycled.depths, s.depths);
     }
 
@@ -548,7 +585,7 @@ mod tests {
             })
             .collect();
         let b = square(2.0, 0.0, 0.0);
-        let s = support(&a, &b, &Vector3::z(), Vec::new()).unwrap();
+        let s = support(&a, &b, &Vector3::z(), Vec::new(), VertexIds::Named).unwrap();
         for (v, d) in s.polygon.vertices().iter().zip(&s.depths) {
             let world = s.frame.to_world(v);
             assert!(
@@ -566,7 +603,7 @@ mod tests {
             Point3::new(3.0, 0.5, 0.0),
         ]);
         let b = square(1.0, 0.0, 0.0);
-        let s = support(&a, &b, &Vector3::z(), Vec::new()).unwrap();
+        let s = support(&a, &b, &Vector3::z(), Vec::new(), VertexIds::Named).unwrap();
         assert_eq!(s.polygon.kind(), PolygonKind::Segment);
         let ends: Vec<_> = s
             .polygon
@@ -592,7 +629,7 @@ mod tests {
             Point3::new(0.25, -1.0, 0.0),
             Point3::new(0.25, 1.0, 0.0),
         ]);
-        let s = support(&a, &b, &Vector3::z(), Vec::new()).unwrap();
+        let s = support(&a, &b, &Vector3::z(), Vec::new(), VertexIds::Named).unwrap();
         assert_eq!(s.polygon.kind(), PolygonKind::Point);
         assert!(
             (s.frame.to_world(&s.polygon.vertices()[0]) - Point3::new(0.25, 0.0, 0.0)).norm()
@@ -604,14 +641,21 @@ mod tests {
     fn feature_ids_name_the_corners_and_crossings_and_survive_a_small_motion() {
         // A small square on a large one: its four corners, all of A.
         let small = square(0.5, 0.3, 0.0);
-        let s = support(&small, &square(2.0, 0.0, 0.0), &Vector3::z(), Vec::new()).unwrap();
+        let s = support(
+            &small,
+            &square(2.0, 0.0, 0.0),
+            &Vector3::z(),
+            Vec::new(),
+            VertexIds::Named,
+        )
+        .unwrap();
         let mut ids = s.features.clone();
         ids.sort();
         assert_eq!(ids[..], (0..4).map(FeatureId::A).collect::<Vec<_>>());
         // Twisted equal squares: eight crossings, each a different pair of edges.
         let a = square(1.0, std::f64::consts::FRAC_PI_4, 0.0);
         let b = square(1.0, 0.0, 0.0);
-        let s = support(&a, &b, &Vector3::z(), Vec::new()).unwrap();
+        let s = support(&a, &b, &Vector3::z(), Vec::new(), VertexIds::Named).unwrap();
         let mut crossings = s.features.clone();
         crossings.sort();
         crossings.dedup();
@@ -629,7 +673,7 @@ mod tests {
                 ..*f
             })
             .collect();
-        let after = support(&moved, &b, &Vector3::z(), Vec::new()).unwrap();
+        let after = support(&moved, &b, &Vector3::z(), Vec::new(), VertexIds::Named).unwrap();
         for (v, id) in after.polygon.vertices().iter().zip(&after.features) {
             let before = s.features[s
                 .polygon

@@ -15,7 +15,7 @@ use crate::contact_set::ContactSet;
 use crate::parallel;
 use crate::parry_bridge::Collider;
 use crate::sleep::Islands;
-use crate::support::Outline;
+use crate::support::{Outline, VertexIds};
 use crate::{
     Body, BodyDesc, BodyId, Solver, StepError, StepTimings, WorldBuilder, WorldError, WorldSettings,
 };
@@ -314,6 +314,7 @@ impl World {
             &self.geometry,
             self.settings.contact_margin,
             self.settings.feature_angle,
+            VertexIds::for_model(self.settings.model),
             &self.gravity,
             &mut self.collision_workspace,
             &mut self.contact_set,
