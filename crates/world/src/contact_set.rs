@@ -1,7 +1,8 @@
 //! The persistent contact set: one entry per touching pair of bodies, owning everything about the
 //! pair across steps — its contact (frame, support polygon, depths, material), a feature id per
-//! support vertex, where the two bodies were when the contact was computed, the blocks its rows
-//! take in this step's problem, and the impulses it ended the last solve with, by feature.
+//! support vertex (under the models that key rows by vertex), where the two bodies were when the
+//! contact was computed, the blocks its rows take in this step's problem, and what it ended the
+//! last solve with.
 //!
 //! A step uses it in stages, as Box2D v3's solver does: collision [`begin`](ContactSet::begin)s
 //! a pass, [`refresh`](ContactSet::refresh)es the pairs it holds (keeping the contact of one

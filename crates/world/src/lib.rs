@@ -5,11 +5,11 @@
 //!
 //! A step is `collision → contact rows → velocity solve → position correction → integrate`
 //! (see [`World::step`]). One persistent contact set owns every touching pair across steps —
-//! its contact, a feature id per support vertex, what its last solve left for the warm start
-//! (the face model's block as one impulse on a body, the other models' rows by feature) — and
-//! its order is the solver's. The integrator turns each body by a free-rotation
-//! step that conserves its angular momentum, so tumbling bodies precess and flip as Euler's
-//! equations say. Each stage is timed ([`World::timings`]) so experiments can time the solver
+//! its contact, what its last solve left for the warm start (the face model's block as one
+//! impulse on a body; the vertex and patch models' rows by the feature id of the support vertex
+//! they act at) — and its order is the solver's. The integrator turns each body by a
+//! free-rotation step that conserves its angular momentum, so tumbling bodies precess and flip
+//! as Euler's equations say. Each stage is timed ([`World::timings`]) so experiments can time the solver
 //! call alone.
 //!
 //! Between steps a program drives the world through [`BodyId`] handles: poses and velocities,
