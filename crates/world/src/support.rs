@@ -261,7 +261,7 @@ fn keep_within_angle(
 /// Whether [`support`] names each vertex of the polygon by its [`FeatureId`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub(crate) enum VertexIds {
-    /// Each vertex named.
+    /// Each vertex named (the default: the whole answer).
     #[default]
     Named,
     /// No names: finding them costs a tenth of a box pair's contact (a search of both
