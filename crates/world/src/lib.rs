@@ -9,8 +9,8 @@
 //! impulse on a body; the vertex and patch models' rows by the feature id of the support vertex
 //! they act at) — and its order is the solver's. The integrator turns each body by a
 //! free-rotation step that conserves its angular momentum, so tumbling bodies precess and flip
-//! as Euler's equations say. Each stage is timed ([`World::timings`]) so experiments can time the solver
-//! call alone.
+//! as Euler's equations say. Each stage is timed ([`World::timings`]) so experiments can time
+//! the solver call alone.
 //!
 //! Between steps a program drives the world through [`BodyId`] handles: poses and velocities,
 //! forces, torques and impulses, kinematic bodies ([`BodyDesc::kinematic`]) and their targets,

@@ -1,9 +1,9 @@
 //! Contacts that hold with the default settings (face model, warm-started from the last step's
-//! impulses, the penetration push in a position pass, the shock pass): the holding scenes of `scenes/`, off
-//! the symmetric axes of the paper's tower, with the figures they must meet. With the earlier defaults (vertex
-//! model, no warm start) the offset pair crept 137 mm, the leaning stack fell, the light cube
-//! was squeezed out 7 m and a cube of the pyramid moved 21 cm. The same scenes run beside
-//! rapier3d in `benches/benches/holding_comparison.rs`.
+//! impulses, the penetration push in a position pass, the shock pass): the holding scenes of
+//! `scenes/`, off the symmetric axes of the paper's tower, with the figures they must meet.
+//! With the earlier defaults (vertex model, no warm start) the offset pair crept 137 mm, the
+//! leaning stack fell, the light cube was squeezed out 7 m and a cube of the pyramid moved
+//! 21 cm. The same scenes run beside rapier3d in `benches/benches/holding_comparison.rs`.
 
 use std::path::Path;
 
