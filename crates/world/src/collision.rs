@@ -14,7 +14,7 @@ use crate::broad_phase::SweepAndPrune;
 use crate::contact_set::{Computed, ContactSet};
 use crate::parallel;
 use crate::parry_bridge::{self, Collider};
-use crate::support::{FeatureAngle, FeaturePoint, Outline, VertexIds, support};
+use crate::support::{Feature, FeatureAngle, Outline, VertexIds, support};
 
 /// Reused buffers of the collision stage.
 #[derive(Debug, Default, Clone)]
@@ -39,8 +39,8 @@ pub(crate) struct CollisionWorkspace {
 /// Scratch for the touching features of one pair's two bodies.
 #[derive(Debug, Default, Clone)]
 struct Features {
-    a: Vec<FeaturePoint>,
-    b: Vec<FeaturePoint>,
+    a: Feature,
+    b: Feature,
 }
 
 /// Fewest pairs to compute worth sharing with the thread pool ([`parallel::for_each`]): below

@@ -20,6 +20,7 @@
 
 mod apart;
 mod body;
+mod box_feature;
 mod box_sat;
 mod broad_phase;
 mod builder;

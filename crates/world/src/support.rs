@@ -26,6 +26,8 @@ use tatami_geometry::nearest::closest_point_on_segment;
 use tatami_geometry::polygon::ring_next;
 use tatami_geometry::{ConvexPolygon, PolygonKind, signed_area};
 
+use crate::box_feature::cuboid_feature;
+
 /// Distance, as a fraction of the support polygon's bounding-box diagonal, within which a
 /// support vertex is named after a feature point (see the module doc). At 1% the corners of
 /// stacked 2 m boxes keep their names through 2.8 cm of offset, while the crossings of a
@@ -46,6 +48,17 @@ pub(crate) struct FeaturePoint {
     pub point: Point3<f64>,
     /// Which point of the body.
     pub id: u32,
+}
+
+/// A body's touching feature: its points, and the outward normal of the face they lie on when
+/// the body's shape says they do (a box's face, a cylinder's cap), so that the feature's
+/// height over the contact plane is that face's plane rather than a fit to its points.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(crate) struct Feature {
+    /// The points, each named by which point of the body it is.
+    pub points: Vec<FeaturePoint>,
+    /// Outward unit normal of the face holding every point, if known.
+    pub face_normal: Option<Vector3<f64>>,
 }
 
 /// Where a support-polygon vertex comes from: a point of A's touching feature, one of B's, or
@@ -75,6 +88,9 @@ pub(crate) enum Outline {
         vertices: Vec<Vector3<f64>>,
         /// Largest vertex distance from the origin, which scales the feature tolerance.
         radius: f64,
+        /// A box's half extents: its feature is read off its axes ([`cuboid_feature`]) rather
+        /// than searched for among its vertices, which are its corners.
+        box_half_extents: Option<Vector3<f64>>,
     },
     /// A ball centred on the body's origin.
     Sphere {
@@ -111,9 +127,9 @@ fn cap_directions() -> &'static [(f64, f64); CAP_VERTICES] {
 /// tenth of a box feature's time).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct FeatureAngle {
-    cos: f64,
-    sin: f64,
-    tan_squared: f64,
+    pub(crate) cos: f64,
+    pub(crate) sin: f64,
+    pub(crate) tan_squared: f64,
 }
 
 impl FeatureAngle {
@@ -128,10 +144,18 @@ impl FeatureAngle {
 }
 
 impl Outline {
-    /// The outline of a polyhedron from its hull vertices.
-    pub(crate) fn polyhedron(vertices: Vec<Vector3<f64>>) -> Self {
+    /// The outline of a polyhedron from its hull vertices; a box's (its corners numbered with
+    /// bit `k` set on the `+k` side) with its half extents.
+    pub(crate) fn polyhedron(
+        vertices: Vec<Vector3<f64>>,
+        box_half_extents: Option<Vector3<f64>>,
+    ) -> Self {
         let radius = vertices.iter().map(|v| v.norm()).fold(0.0, f64::max);
-        Self::Polyhedron { vertices, radius }
+        Self::Polyhedron {
+            vertices,
+            radius,
+            box_half_extents,
+        }
     }
 
     /// Largest distance of the outline from the body's origin (m).
@@ -154,8 +178,18 @@ impl Outline {
         rotation: &UnitQuaternion<f64>,
         direction: &Vector3<f64>,
         angle: &FeatureAngle,
-        out: &mut Vec<FeaturePoint>,
+        feature: &mut Feature,
     ) {
+        if let Self::Polyhedron {
+            box_half_extents: Some(h),
+            ..
+        } = self
+            && cuboid_feature(h, origin, rotation, direction, angle, feature)
+        {
+            return;
+        }
+        feature.face_normal = None;
+        let out = &mut feature.points;
         out.clear();
         let rim_points = CAP_VERTICES as u32;
         match self {
@@ -179,6 +213,7 @@ impl Outline {
                     id,
                 };
                 if d.z.abs() >= angle.cos || rim.is_none() {
+                    feature.face_normal = Some(rotation * Vector3::z() * cap.signum());
                     out.extend((0u32..).zip(cap_directions()).map(|(k, (cos, sin))| {
                         place((
                             Vector3::new(radius * cos, radius * sin, cap),
@@ -201,7 +236,9 @@ impl Outline {
                     }
                 }
             }
-            Self::Polyhedron { vertices, radius } => {
+            Self::Polyhedron {
+                vertices, radius, ..
+            } => {
                 let local = rotation.inverse_transform_vector(direction);
                 let extreme = vertices
                     .iter()
@@ -297,13 +334,13 @@ pub(crate) struct Support {
 /// replaces, so that a moved pair's contact is recomputed without an allocation), and each
 /// vertex's feature id if `ids` asks for them. `None` only if a feature is empty or not finite.
 pub(crate) fn support(
-    feature_a: &[FeaturePoint],
-    feature_b: &[FeaturePoint],
+    feature_a: &Feature,
+    feature_b: &Feature,
     normal: &Vector3<f64>,
     mut depths: Vec<f64>,
     ids: VertexIds,
 ) -> Option<Support> {
-    let (a0, b0) = (feature_a.first()?, feature_b.first()?);
+    let (a0, b0) = (feature_a.points.first()?, feature_b.points.first()?);
     let frame = ContactFrame::from_normal(nalgebra::center(&a0.point, &b0.point), *normal).ok()?;
     let surface_a = Surface::fit(&frame, feature_a, ids)?;
     let surface_b = Surface::fit(&frame, feature_b, ids)?;
@@ -372,7 +409,8 @@ fn identify(p: &Point2<f64>, a: &Surface, b: &Surface, tolerance: f64) -> Featur
 
 /// A feature seen from the contact plane: its outline with the id of each outline vertex (when
 /// named, [`VertexIds`]), and its height above the plane as an affine function
-/// `h = c₀ + c₁ x + c₂ y` (least squares over its points; exact for a face).
+/// `h = c₀ + c₁ x + c₂ y`: a face's own plane when the shape says which face it is, linear
+/// along an edge, else least squares over its points.
 struct Surface {
     outline: ConvexPolygon,
     ids: Points<u32>,
@@ -380,8 +418,9 @@ struct Surface {
 }
 
 impl Surface {
-    fn fit(frame: &ContactFrame, feature: &[FeaturePoint], names: VertexIds) -> Option<Self> {
-        let plane: Points<Point2<f64>> = feature.iter().map(|f| frame.to_plane(&f.point)).collect();
+    fn fit(frame: &ContactFrame, feature: &Feature, names: VertexIds) -> Option<Self> {
+        let points = &feature.points;
+        let plane: Points<Point2<f64>> = points.iter().map(|f| frame.to_plane(&f.point)).collect();
         let outline = ConvexPolygon::from_points(&plane).ok()?;
         // The hull's vertices are copies of its input points.
         let ids = match names {
@@ -392,39 +431,38 @@ impl Surface {
                     plane
                         .iter()
                         .position(|p| p == v)
-                        .map_or(0, |k| feature[k].id)
+                        .map_or(0, |k| points[k].id)
                 })
                 .collect(),
             VertexIds::Unnamed => Points::new(),
         };
-        let heights = feature
-            .iter()
-            .map(|f| (f.point - frame.origin).dot(&frame.normal));
-        let mean_height = heights.clone().sum::<f64>() / feature.len() as f64;
-        let coefficients = match outline.kind() {
-            PolygonKind::Point => Vector3::new(mean_height, 0.0, 0.0),
-            PolygonKind::Segment | PolygonKind::Polygon => {
-                // Least squares in coordinates centred on the centroid; along a segment only the
-                // slope along it is determined, so the normal matrix gets a tiny ridge.
-                let c = outline.centroid();
-                let mut normal_matrix = Matrix3::zeros();
-                let mut rhs = Vector3::zeros();
-                for (p, h) in plane.iter().zip(heights) {
-                    let row = Vector3::new(1.0, p.x - c.x, p.y - c.y);
-                    normal_matrix += row * row.transpose();
-                    rhs += row * h;
-                }
-                let ridge = 1e-12 * normal_matrix.trace();
-                // Symmetric positive definite with the ridge: Cholesky is the cheap exact solve.
-                let solved = (normal_matrix + Matrix3::identity() * ridge)
-                    .cholesky()?
-                    .solve(&rhs);
-                Vector3::new(
-                    solved.x - solved.y * c.x - solved.z * c.y,
-                    solved.y,
-                    solved.z,
-                )
+        let height = |f: &FeaturePoint| (f.point - frame.origin).dot(&frame.normal);
+        let coefficients = match (outline.kind(), feature.face_normal, &points[..]) {
+            (PolygonKind::Point, ..) => {
+                let mean_height = points.iter().map(height).sum::<f64>() / points.len() as f64;
+                Vector3::new(mean_height, 0.0, 0.0)
             }
+            // A face's own plane, through any of its points: `(P − p₀)·m = 0` at
+            // `P = origin + x t₁ + y t₂ + h n`. A face within the feature angle across each of
+            // its axes has `|n·m| ≥ √cos(2·angle)`, 0.9997 at 1°; a face steeper than 60°
+            // (feature angles past 30°) is fitted instead.
+            (_, Some(m), [p0, ..]) if frame.normal.dot(&m).abs() >= 0.5 => {
+                let nm = frame.normal.dot(&m);
+                Vector3::new(
+                    (p0.point - frame.origin).dot(&m),
+                    -frame.tangent1.dot(&m),
+                    -frame.tangent2.dot(&m),
+                ) / nm
+            }
+            // An edge: the height runs linearly between its ends (the least-squares fit's
+            // answer, without its normal equations).
+            (PolygonKind::Segment, None, [p0, p1]) => {
+                let (q0, q1) = (plane[0], plane[1]);
+                let along = q1 - q0;
+                let slope = along * ((height(p1) - height(p0)) / along.norm_squared());
+                Vector3::new(height(p0) - slope.dot(&q0.coords), slope.x, slope.y)
+            }
+            _ => least_squares_plane(&outline, &plane, points.iter().map(height))?,
         };
         Some(Self {
             outline,
@@ -448,6 +486,35 @@ impl Surface {
             .min_by(|a, b| a.0.total_cmp(&b.0))
             .map_or(0, |(_, id)| id)
     }
+}
+
+/// The plane `h = c₀ + c₁ x + c₂ y` fitting `heights` at the points `plane` (whose hull is
+/// `outline`, a segment or a polygon) by least squares, in coordinates centred on the
+/// outline's centroid; along a segment only the slope along it is determined, so the normal
+/// matrix gets a tiny ridge.
+fn least_squares_plane(
+    outline: &ConvexPolygon,
+    plane: &[Point2<f64>],
+    heights: impl Iterator<Item = f64>,
+) -> Option<Vector3<f64>> {
+    let c = outline.centroid();
+    let mut normal_matrix = Matrix3::zeros();
+    let mut rhs = Vector3::zeros();
+    for (p, h) in plane.iter().zip(heights) {
+        let row = Vector3::new(1.0, p.x - c.x, p.y - c.y);
+        normal_matrix += row * row.transpose();
+        rhs += row * h;
+    }
+    let ridge = 1e-12 * normal_matrix.trace();
+    // Symmetric positive definite with the ridge: Cholesky is the cheap exact solve.
+    let solved = (normal_matrix + Matrix3::identity() * ridge)
+        .cholesky()?
+        .solve(&rhs);
+    Some(Vector3::new(
+        solved.x - solved.y * c.x - solved.z * c.y,
+        solved.y,
+        solved.z,
+    ))
 }
 
 /// The overlap of two convex outlines (points, segments or polygons), as unordered points.
@@ -549,6 +616,14 @@ mod tests {
             .collect()
     }
 
+    /// A feature whose heights are fitted, as a hull's.
+    fn fitted(points: &[FeaturePoint]) -> Feature {
+        Feature {
+            points: points.to_vec(),
+            face_normal: None,
+        }
+    }
+
     fn square(half: f64, angle: f64, z: f64) -> Vec<FeaturePoint> {
         let r = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), angle);
         numbered(
@@ -563,14 +638,28 @@ mod tests {
     fn twisted_squares_overlap_in_a_regular_octagon() {
         let a = square(1.0, std::f64::consts::FRAC_PI_4, 0.0);
         let b = square(1.0, 0.0, 0.0);
-        let s = support(&a, &b, &Vector3::z(), Vec::new(), VertexIds::Named).unwrap();
+        let s = support(
+            &fitted(&a),
+            &fitted(&b),
+            &Vector3::z(),
+            Vec::new(),
+            VertexIds::Named,
+        )
+        .unwrap();
         assert_eq!(s.polygon.vertices().len(), 8);
         // Regular octagon with inradius 1: area 8 tan(π/8).
         let expected = 8.0 * (std::f64::consts::PI / 8.0).tan();
         assert!((s.polygon.area() - expected).abs() < 1e-12);
         assert!(s.depths.iter().all(|d| d.abs() < 1e-12));
         // A recycled buffer (a replaced contact's depths) is cleared before it is filled.
-        let recycled = support(&a, &b, &Vector3::z(), vec![7.0; 12], VertexIds::Named).unwrap();
+        let recycled = support(
+            &fitted(&a),
+            &fitted(&b),
+            &Vector3::z(),
+            vec![7.0; 12],
+            VertexIds::Named,
+        )
+        .unwrap();
         assert_eq!(recycled.depths, s.depths);
     }
 
@@ -585,7 +674,14 @@ mod tests {
             })
             .collect();
         let b = square(2.0, 0.0, 0.0);
-        let s = support(&a, &b, &Vector3::z(), Vec::new(), VertexIds::Named).unwrap();
+        let s = support(
+            &fitted(&a),
+            &fitted(&b),
+            &Vector3::z(),
+            Vec::new(),
+            VertexIds::Named,
+        )
+        .unwrap();
         for (v, d) in s.polygon.vertices().iter().zip(&s.depths) {
             let world = s.frame.to_world(v);
             assert!(
@@ -603,7 +699,14 @@ mod tests {
             Point3::new(3.0, 0.5, 0.0),
         ]);
         let b = square(1.0, 0.0, 0.0);
-        let s = support(&a, &b, &Vector3::z(), Vec::new(), VertexIds::Named).unwrap();
+        let s = support(
+            &fitted(&a),
+            &fitted(&b),
+            &Vector3::z(),
+            Vec::new(),
+            VertexIds::Named,
+        )
+        .unwrap();
         assert_eq!(s.polygon.kind(), PolygonKind::Segment);
         let ends: Vec<_> = s
             .polygon
@@ -629,7 +732,14 @@ mod tests {
             Point3::new(0.25, -1.0, 0.0),
             Point3::new(0.25, 1.0, 0.0),
         ]);
-        let s = support(&a, &b, &Vector3::z(), Vec::new(), VertexIds::Named).unwrap();
+        let s = support(
+            &fitted(&a),
+            &fitted(&b),
+            &Vector3::z(),
+            Vec::new(),
+            VertexIds::Named,
+        )
+        .unwrap();
         assert_eq!(s.polygon.kind(), PolygonKind::Point);
         assert!(
             (s.frame.to_world(&s.polygon.vertices()[0]) - Point3::new(0.25, 0.0, 0.0)).norm()
@@ -642,8 +752,8 @@ mod tests {
         // A small square on a large one: its four corners, all of A.
         let small = square(0.5, 0.3, 0.0);
         let s = support(
-            &small,
-            &square(2.0, 0.0, 0.0),
+            &fitted(&small),
+            &fitted(&square(2.0, 0.0, 0.0)),
             &Vector3::z(),
             Vec::new(),
             VertexIds::Named,
@@ -655,7 +765,14 @@ mod tests {
         // Twisted equal squares: eight crossings, each a different pair of edges.
         let a = square(1.0, std::f64::consts::FRAC_PI_4, 0.0);
         let b = square(1.0, 0.0, 0.0);
-        let s = support(&a, &b, &Vector3::z(), Vec::new(), VertexIds::Named).unwrap();
+        let s = support(
+            &fitted(&a),
+            &fitted(&b),
+            &Vector3::z(),
+            Vec::new(),
+            VertexIds::Named,
+        )
+        .unwrap();
         let mut crossings = s.features.clone();
         crossings.sort();
         crossings.dedup();
@@ -673,7 +790,14 @@ mod tests {
                 ..*f
             })
             .collect();
-        let after = support(&moved, &b, &Vector3::z(), Vec::new(), VertexIds::Named).unwrap();
+        let after = support(
+            &fitted(&moved),
+            &fitted(&b),
+            &Vector3::z(),
+            Vec::new(),
+            VertexIds::Named,
+        )
+        .unwrap();
         for (v, id) in after.polygon.vertices().iter().zip(&after.features) {
             let before = s.features[s
                 .polygon
@@ -685,5 +809,51 @@ mod tests {
                 .0];
             assert_eq!(*id, before);
         }
+    }
+
+    /// A face placed by its normal and an edge placed by its ends give the heights that the
+    /// least-squares fit of their points gives (the fit is exact for both): faces tilted up to
+    /// 1° and edges tilted up to 30°, turned anywhere about the normal, at heights up to 1 m
+    /// and 10 m off the frame's origin. Tolerance: the fit's ridge (1e-12 of its normal
+    /// matrix's trace, `n + Σ|p − c|²`) biases its answer by up to about `1e-12 (1 + r²/ρ²)`
+    /// relative, `r` the points' reach from their centroid (up to 3 m) and `ρ` the spread it is
+    /// divided by (down to 0.1 m along a short edge): 1e-9 of the heights and offsets.
+    #[test]
+    fn known_faces_and_edges_are_placed_as_the_fit_places_them() {
+        use proptest::prelude::*;
+        proptest!(ProptestConfig::with_cases(256), |(
+            half in 0.1..2.0f64,
+            turn in -3.2..3.2f64,
+            (tilt_axis, tilt) in (-3.2..3.2f64, -1.0..1.0f64),
+            edge_slope in -0.5..0.5f64,
+            (x, y, z) in (-10.0..10.0f64, -10.0..10.0f64, -1.0..1.0f64),
+        )| {
+            let frame = ContactFrame::from_normal(Point3::new(x, y, z), Vector3::z()).unwrap();
+            let twist = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), turn);
+            let axis = Vector3::new(tilt_axis.cos(), tilt_axis.sin(), 0.0);
+            let lean = UnitQuaternion::from_scaled_axis(axis * tilt.to_radians());
+            let centre = Point3::new(0.3, -0.2, 0.01);
+            let face: Vec<_> = square(half, 0.0, 0.0)
+                .into_iter()
+                .map(|f| FeaturePoint { point: centre + lean * (twist * f.point.coords), ..f })
+                .collect();
+            let placed = Feature { points: face.clone(), face_normal: Some(lean * Vector3::z()) };
+            let by_plane = Surface::fit(&frame, &placed, VertexIds::Unnamed).unwrap();
+            let by_fit = Surface::fit(&frame, &fitted(&face), VertexIds::Unnamed).unwrap();
+            let scale = 1e-9 * (1.0 + x.abs() + y.abs() + z.abs());
+            for p in by_fit.outline.vertices().iter().chain([&Point2::new(0.1, 0.7)]) {
+                prop_assert!((by_plane.height(p) - by_fit.height(p)).abs() < scale);
+            }
+            let ends = [Point3::new(-half, 0.2, 0.0), Point3::new(half, 0.2, 2.0 * half * edge_slope)];
+            let edge: Vec<_> = numbered(ends.map(|p| centre + twist * p.coords).to_vec());
+            let by_line = Surface::fit(&frame, &fitted(&edge), VertexIds::Unnamed).unwrap();
+            let plane: Vec<_> = edge.iter().map(|f| frame.to_plane(&f.point)).collect();
+            let heights = edge.iter().map(|f| (f.point - frame.origin).dot(&frame.normal));
+            let fit = least_squares_plane(&by_line.outline, &plane, heights).unwrap();
+            for p in plane.iter().chain([&nalgebra::center(&plane[0], &plane[1])]) {
+                let least = fit.dot(&Vector3::new(1.0, p.x, p.y));
+                prop_assert!((by_line.height(p) - least).abs() < scale);
+            }
+        });
     }
 }

@@ -128,7 +128,10 @@ impl World {
                 radius: *radius,
                 half_height: *half_height,
             },
-            (_, Some(vertices)) => Outline::polyhedron(vertices),
+            (crate::Shape::Box { half_extents }, Some(corners)) => {
+                Outline::polyhedron(corners, Some(*half_extents))
+            }
+            (_, Some(vertices)) => Outline::polyhedron(vertices, None),
             (_, None) => {
                 return Err(WorldError::InvalidBody {
                     body: body.name().to_owned(),
