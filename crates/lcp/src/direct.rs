@@ -178,9 +178,10 @@ pub const RESIDUAL_TOLERANCE: f64 = 1e-6;
 /// Solves `M z + q` by Lemke's method, accepting an answer only when its residual is within
 /// [`RESIDUAL_TOLERANCE`]. Lemke's pivots decide on signs of round-off-sized entries, so on a
 /// degenerate contact problem one path ends on a ray, or on a basis that is not quite
-/// complementary, where another finds the answer. The paths tried, in order: scaled
-/// ([`lemke::solve`]) and unscaled ([`lemke::solve_unscaled`]), on the problem, then on
-/// `(M + ε I)` for each ε of [`REGULARISATIONS`] (times M's largest diagonal). Returns the answer,
+/// complementary, where another finds the answer. The paths tried, in order: each of
+/// [`lemke::PATHS`] (scaled and unscaled, with the covering vector `e = 1` and then with a
+/// staggered one) on the problem, then on `(M + ε I)` for each ε of [`REGULARISATIONS`]
+/// (times M's largest diagonal). Returns the answer,
 /// its pivots, the ε used if any, the residual on the true problem and the paths tried.
 fn solve_standard(
     matrix: &DMatrix<f64>,
@@ -201,9 +202,9 @@ fn solve_standard(
                 &regularised
             }
         };
-        for path in [lemke::solve, lemke::solve_unscaled] {
+        for path in lemke::PATHS {
             attempts += 1;
-            let error = match path(system, q, limit) {
+            let error = match lemke::solve_along(system, q, path, limit) {
                 Ok((x, pivots)) => {
                     let residual = relative_residual(matrix, q, &x);
                     if residual <= RESIDUAL_TOLERANCE {

@@ -5,6 +5,13 @@
 //! (a solution) or an entering column has no positive entry (a ray: no solution found). For
 //! P-matrices and positive semi-definite `A` with a feasible problem, Lemke always finishes.
 //!
+//! The covering vector `e` may be any positive vector ([`Covering`]); each gives a path of its
+//! own through the same problem. The direct solver tries the textbook `e = 1` first, then
+//! a [`Covering::Staggered`] one whose entries differ: a cylinder's cap resting on a face under
+//! the vertex model gives 64 normal rows with the same `qᵢ`, and on such a problem every path
+//! with `e = 1` (scaled or not, regularised or not) ended on a ray while the staggered one
+//! solved it in its first attempt.
+//!
 //! Degenerate problems (ties in the ratio test, e.g. all `qᵢ` equal) cycle under a naive rule.
 //! The **lexicographic** ratio test breaks ties by the rows of `B⁻¹` (the tableau's `w` columns),
 //! which keeps every tableau row lexicographically positive and so never revisits a basis.
@@ -43,6 +50,63 @@ pub const REFACTOR_EVERY: usize = 50;
 /// Relative size below which a pivot-column entry is taken as zero.
 const PIVOT_TOLERANCE: f64 = 1e-12;
 
+/// The covering vector `e > 0` of the tableau `w − A z − e z₀ = q`: which path Lemke's pivots
+/// take from the start (`z₀` enters at the smallest `qᵢ / eᵢ`) to the answer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Covering {
+    /// `e = 1`, the textbook choice.
+    #[default]
+    Uniform,
+    /// `eᵢ = 1 + ½ frac(i φ)` (φ the golden ratio): entries spread over `[1, 1.5)`, no two
+    /// equal, so rows whose data tie (coplanar contact points) are told apart from the first
+    /// pivot on.
+    Staggered,
+}
+
+impl Covering {
+    /// Entry `i` of the covering vector.
+    fn entry(self, i: usize) -> f64 {
+        match self {
+            Self::Uniform => 1.0,
+            Self::Staggered => {
+                let golden = 0.5 * (1.0 + 5f64.sqrt());
+                1.0 + 0.5 * (i as f64 * golden).fract()
+            }
+        }
+    }
+}
+
+/// One of Lemke's paths through a problem: with or without [`solve`]'s scaling, and which
+/// covering vector.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Path {
+    /// Whether the problem is first scaled to a unit diagonal (see [`solve`]).
+    pub scaled: bool,
+    /// The covering vector.
+    pub covering: Covering,
+}
+
+/// The paths the direct solver tries, in order: scaled and unscaled with `e = 1`, then both
+/// again with the staggered covering vector.
+pub const PATHS: [Path; 4] = [
+    Path {
+        scaled: true,
+        covering: Covering::Uniform,
+    },
+    Path {
+        scaled: false,
+        covering: Covering::Uniform,
+    },
+    Path {
+        scaled: true,
+        covering: Covering::Staggered,
+    },
+    Path {
+        scaled: false,
+        covering: Covering::Staggered,
+    },
+];
+
 /// Solves `z ≥ 0, w = a z + q ≥ 0, zᵀw = 0` by Lemke's method with at most `max_pivots` pivots.
 ///
 /// Errors: [`LcpError::RayTermination`] when no solution is found (e.g. an infeasible problem),
@@ -68,10 +132,37 @@ pub fn solve(
     q: &DVector<f64>,
     max_pivots: usize,
 ) -> Result<(DVector<f64>, usize), LcpError> {
+    solve_along(a, q, PATHS[0], max_pivots)
+}
+
+/// Lemke's method along `path`: [`solve`] is the first of [`PATHS`], [`solve_unscaled`] the
+/// second. Returns the answer and the number of pivots made.
+///
+/// ```
+/// use nalgebra::{DMatrix, DVector};
+/// use tatami_lcp::lemke::{Covering, Path, solve_along};
+/// // Two equal rows: the same answer along either covering vector.
+/// let a = DMatrix::from_row_slice(2, 2, &[2.0, 1.0, 1.0, 2.0]);
+/// let q = DVector::from_vec(vec![-3.0, -3.0]);
+/// for covering in [Covering::Uniform, Covering::Staggered] {
+///     let (z, _) = solve_along(&a, &q, Path { scaled: true, covering }, 20)?;
+///     assert!((z - DVector::from_vec(vec![1.0, 1.0])).amax() < 1e-12);
+/// }
+/// # Ok::<(), tatami_lcp::LcpError>(())
+/// ```
+pub fn solve_along(
+    a: &DMatrix<f64>,
+    q: &DVector<f64>,
+    path: Path,
+    max_pivots: usize,
+) -> Result<(DVector<f64>, usize), LcpError> {
     dense::check_square_system(a, q)?;
     let n = q.len();
     if q.iter().all(|&x| x >= 0.0) {
         return Ok((DVector::zeros(n), 0));
+    }
+    if !path.scaled {
+        return pivot_to_solution(a, q, path.covering, max_pivots);
     }
     let mut d = DVector::from_fn(n, |i, _| {
         let diagonal = a[(i, i)];
@@ -93,7 +184,7 @@ pub fn solve(
         }
     }
     let scaled = DMatrix::from_fn(n, n, |i, j| d[i] * a[(i, j)] * d[j]);
-    let (y, pivots) = pivot_to_solution(&scaled, &q.component_mul(&d), max_pivots)?;
+    let (y, pivots) = pivot_to_solution(&scaled, &q.component_mul(&d), path.covering, max_pivots)?;
     let z = y.component_mul(&d);
     if z.iter().all(|x| x.is_finite()) {
         Ok((z, pivots))
@@ -109,27 +200,25 @@ pub fn solve_unscaled(
     q: &DVector<f64>,
     max_pivots: usize,
 ) -> Result<(DVector<f64>, usize), LcpError> {
-    dense::check_square_system(a, q)?;
-    if q.iter().all(|&x| x >= 0.0) {
-        return Ok((DVector::zeros(q.len()), 0));
-    }
-    pivot_to_solution(a, q, max_pivots)
+    solve_along(a, q, PATHS[1], max_pivots)
 }
 
 /// Lemke's pivots on a checked problem with some `qᵢ < 0`.
 fn pivot_to_solution(
     a: &DMatrix<f64>,
     q: &DVector<f64>,
+    covering: Covering,
     max_pivots: usize,
 ) -> Result<(DVector<f64>, usize), LcpError> {
     let n = q.len();
-    let mut tableau = Tableau::new(a, q);
+    let mut tableau = Tableau::new(a, q, covering);
     let z0 = 2 * n;
-    // First pivot: z₀ replaces the most negative qᵢ; among ties the last row, which keeps the
-    // tableau lexicographically positive.
+    // First pivot: z₀ replaces the row of the most negative `qᵢ / eᵢ` (which leaves every
+    // right-hand side ≥ 0); among ties the last row, which keeps the tableau lexicographically
+    // positive.
     let first = (0..n)
         .rev()
-        .min_by(|&i, &j| q[i].total_cmp(&q[j]))
+        .min_by(|&i, &j| (q[i] / covering.entry(i)).total_cmp(&(q[j] / covering.entry(j))))
         .expect("n > 0");
     let left = tableau.pivot(first, z0);
     let mut entering = tableau.complement(left);
@@ -175,6 +264,7 @@ fn pivot_to_solution(
 /// Row-major tableau `[w (n) | z (n) | z₀ | rhs]` with the basic variable of each row.
 struct Tableau {
     n: usize,
+    covering: Covering,
     width: usize,
     cells: Vec<f64>,
     basis: Vec<usize>,
@@ -183,28 +273,29 @@ struct Tableau {
     pivot_row: Vec<f64>,
 }
 
-/// Entry `(i, v)` of the starting tableau `[I | −A | −e | q]`: column `v` is `wᵥ` for `v < n`,
-/// `z_(v−n)` up to `2n`, then `z₀`, then the right-hand side.
-fn data_cell(a: &DMatrix<f64>, q: &DVector<f64>, i: usize, v: usize) -> f64 {
+/// Entry `(i, v)` of the starting tableau `[I | −A | −e | q]` (`e` the covering vector):
+/// column `v` is `wᵥ` for `v < n`, `z_(v−n)` up to `2n`, then `z₀`, then the right-hand side.
+fn data_cell(a: &DMatrix<f64>, q: &DVector<f64>, covering: Covering, i: usize, v: usize) -> f64 {
     let n = q.len();
     match v {
         v if v < n => f64::from(u8::from(i == v)),
         v if v < 2 * n => -a[(i, v - n)],
-        v if v == 2 * n => -1.0,
+        v if v == 2 * n => -covering.entry(i),
         _ => q[i],
     }
 }
 
 impl Tableau {
-    fn new(a: &DMatrix<f64>, q: &DVector<f64>) -> Self {
+    fn new(a: &DMatrix<f64>, q: &DVector<f64>, covering: Covering) -> Self {
         let n = q.len();
         let width = 2 * n + 2;
         let cells = (0..n * width)
-            .map(|k| data_cell(a, q, k / width, k % width))
+            .map(|k| data_cell(a, q, covering, k / width, k % width))
             .collect();
         let scale = a.amax().max(1.0);
         Self {
             n,
+            covering,
             width,
             cells,
             basis: (0..n).collect(),
@@ -295,7 +386,7 @@ impl Tableau {
     /// accumulated round-off is gone. `false` if `B` is singular to working precision.
     fn refactor(&mut self, a: &DMatrix<f64>, q: &DVector<f64>) -> bool {
         let n = self.n;
-        let column = |i: usize, v: usize| data_cell(a, q, i, v);
+        let column = |i: usize, v: usize| data_cell(a, q, self.covering, i, v);
         let basis = Mat::<f64>::from_fn(n, n, |i, k| column(i, self.basis[k]));
         let data = Mat::<f64>::from_fn(n, self.width, column);
         let cells = basis.partial_piv_lu().solve(&data);
@@ -323,7 +414,9 @@ impl Tableau {
     /// Re-solves the final basis `B x = q` (columns of `[I | −A]`) with an LU factorisation.
     fn polish(&self, a: &DMatrix<f64>, q: &DVector<f64>) -> Option<DVector<f64>> {
         let n = self.n;
-        let basis = DMatrix::from_fn(n, n, |i, k| data_cell(a, q, i, self.basis[k]));
+        let basis = DMatrix::from_fn(n, n, |i, k| {
+            data_cell(a, q, self.covering, i, self.basis[k])
+        });
         let x = lu_solve(basis, q)?;
         let mut z = DVector::zeros(n);
         for (k, &v) in self.basis.iter().enumerate() {

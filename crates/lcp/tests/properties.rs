@@ -1,9 +1,10 @@
-//! Property tests: Lemke on random SPD and P-matrix problems up to 60×60; PGS converging to its
-//! answer; infeasible problems ending on a ray.
+//! Property tests: Lemke on random SPD and P-matrix problems up to 60×60, along each of its
+//! paths; PGS converging to its answer; infeasible problems ending on a ray.
 
 use nalgebra::{DMatrix, DVector};
 use proptest::prelude::*;
 use proptest::test_runner::FileFailurePersistence;
+use tatami_lcp::lemke::{PATHS, solve_along};
 use tatami_lcp::{LcpError, lemke, pgs_dense, residual};
 
 fn config() -> ProptestConfig {
@@ -57,9 +58,18 @@ fn tolerance(a: &DMatrix<f64>, q: &DVector<f64>) -> f64 {
 /// Lemke finishes with a feasible, complementary answer to [`tolerance`].
 fn assert_lemke_solves(a: &DMatrix<f64>, q: &DVector<f64>) -> Result<(), TestCaseError> {
     let z = lemke(a, q, 20 * q.len() + 10).map_err(|e| TestCaseError::fail(e.to_string()))?;
-    let w = a * &z + q;
-    prop_assert!(residual::infeasibility(&z, &w) <= tolerance(a, q));
-    prop_assert!(residual::complementarity(&z, &w) <= tolerance(a, q));
+    assert_solution(a, q, &z)
+}
+
+/// `z` is feasible and complementary to [`tolerance`].
+fn assert_solution(
+    a: &DMatrix<f64>,
+    q: &DVector<f64>,
+    z: &DVector<f64>,
+) -> Result<(), TestCaseError> {
+    let w = a * z + q;
+    prop_assert!(residual::infeasibility(z, &w) <= tolerance(a, q));
+    prop_assert!(residual::complementarity(z, &w) <= tolerance(a, q));
     Ok(())
 }
 
@@ -83,6 +93,28 @@ proptest! {
     fn lemke_solves_p_matrix_problems((b, q) in raw(1..=60)) {
         let a = p_matrix(&b);
         assert_lemke_solves(&a, &q)?;
+    }
+
+    /// Every path the direct solver takes (scaled or not, either covering vector) solves SPD
+    /// and P-matrix problems, and ends an infeasible one on a ray.
+    #[test]
+    fn every_path_solves_what_lemke_solves((b, q) in raw(1..=40), row in 0usize..40) {
+        let n = q.len();
+        for path in PATHS {
+            for a in [spd(&b), p_matrix(&b)] {
+                let (z, _) = solve_along(&a, &q, path, 20 * n + 10)
+                    .map_err(|e| TestCaseError::fail(format!("{path:?}: {e}")))?;
+                assert_solution(&a, &q, &z)?;
+            }
+            let (mut a, mut q) = (p_matrix(&b), q.clone());
+            let row = row % n;
+            for j in 0..n {
+                a[(row, j)] = -a[(row, j)].abs();
+            }
+            q[row] = -q[row].abs() - 0.1;
+            let result = solve_along(&a, &q, path, 50 * n + 10);
+            prop_assert!(matches!(result, Err(LcpError::RayTermination { .. })), "{path:?}: {result:?}");
+        }
     }
 
     #[test]
