@@ -66,6 +66,7 @@ pub(crate) fn cuboid_feature(
     let flip = |k: usize| axes.column(k) * (-2.0 * signs[k] * h[k]);
     out.points.clear();
     out.face_normal = None;
+    out.ring = true;
     out.points.push(FeaturePoint {
         point: extreme,
         id: extreme_id,

@@ -50,13 +50,17 @@ pub(crate) struct FeaturePoint {
     pub id: u32,
 }
 
-/// A body's touching feature: its points, and the outward normal of the face they lie on when
-/// the body's shape says they do (a box's face, a cylinder's cap), so that the feature's
-/// height over the contact plane is that face's plane rather than a fit to its points.
+/// A body's touching feature: its points, and what the body's shape says of them. Points that
+/// go around the feature in order (a box's face or a cylinder's cap, an edge, a corner) are its
+/// outline as they stand, with no hull to build; the outward normal of the face they lie on
+/// makes the feature's height over the contact plane that face's plane rather than a fit to
+/// its points.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub(crate) struct Feature {
     /// The points, each named by which point of the body it is.
     pub points: Vec<FeaturePoint>,
+    /// Whether the points go around the feature's outline in order (either way), each once.
+    pub ring: bool,
     /// Outward unit normal of the face holding every point, if known.
     pub face_normal: Option<Vector3<f64>>,
 }
@@ -189,6 +193,9 @@ impl Outline {
             return;
         }
         feature.face_normal = None;
+        // A sphere's point, a cylinder's cap, side line or rim point, and any one or two points
+        // of a hull go around their outline in order.
+        feature.ring = true;
         let out = &mut feature.points;
         out.clear();
         let rim_points = CAP_VERTICES as u32;
@@ -256,6 +263,7 @@ impl Outline {
                         }),
                 );
                 keep_within_angle(out, direction, angle.tan_squared, 1e-9 * radius);
+                feature.ring = out.len() <= 2;
             }
         }
     }
@@ -344,14 +352,11 @@ pub(crate) fn support(
     let frame = ContactFrame::from_normal(nalgebra::center(&a0.point, &b0.point), *normal).ok()?;
     let surface_a = Surface::fit(&frame, feature_a, ids)?;
     let surface_b = Surface::fit(&frame, feature_b, ids)?;
-    let mut points = overlap(&surface_a.outline, &surface_b.outline);
+    let mut points = overlap(&surface_a, &surface_b);
     if points.is_empty() {
         // Touching only at the boundary within rounding: the nearest point of A's outline.
-        points.push(
-            surface_a
-                .outline
-                .nearest_point(&surface_b.outline.centroid()),
-        );
+        let hull = |s: &Surface| ConvexPolygon::from_points(&s.outline).ok();
+        points.push(hull(&surface_a)?.nearest_point(&hull(&surface_b)?.centroid()));
     }
     let polygon = ConvexPolygon::from_points(&points).ok()?;
     depths.clear();
@@ -389,7 +394,6 @@ fn identify(p: &Point2<f64>, a: &Surface, b: &Surface, tolerance: f64) -> Featur
     let within = 4.0 * tolerance * tolerance;
     let at_point = |s: &Surface| {
         s.outline
-            .vertices()
             .iter()
             .zip(&s.ids)
             .filter(|(v, _)| (*v - p).norm_squared() <= within)
@@ -407,12 +411,14 @@ fn identify(p: &Point2<f64>, a: &Surface, b: &Surface, tolerance: f64) -> Featur
     }
 }
 
-/// A feature seen from the contact plane: its outline with the id of each outline vertex (when
-/// named, [`VertexIds`]), and its height above the plane as an affine function
-/// `h = c₀ + c₁ x + c₂ y`: a face's own plane when the shape says which face it is, linear
-/// along an edge, else least squares over its points.
+/// A feature seen from the contact plane: its outline (counter-clockwise, without repeated or
+/// collinear vertices) with the id of each outline vertex (when named, [`VertexIds`]), and its
+/// height above the plane as an affine function `h = c₀ + c₁ x + c₂ y`: a face's own plane
+/// when the shape says which face it is, linear along an edge, else least squares over its
+/// points.
 struct Surface {
-    outline: ConvexPolygon,
+    outline: Points<Point2<f64>>,
+    kind: PolygonKind,
     ids: Points<u32>,
     coefficients: Vector3<f64>,
 }
@@ -421,23 +427,46 @@ impl Surface {
     fn fit(frame: &ContactFrame, feature: &Feature, names: VertexIds) -> Option<Self> {
         let points = &feature.points;
         let plane: Points<Point2<f64>> = points.iter().map(|f| frame.to_plane(&f.point)).collect();
-        let outline = ConvexPolygon::from_points(&plane).ok()?;
-        // The hull's vertices are copies of its input points.
-        let ids = match names {
-            VertexIds::Named => outline
-                .vertices()
-                .iter()
-                .map(|v| {
-                    plane
+        let ring = feature.ring.then(|| ring_kind(&plane)).flatten();
+        let (outline, kind, ids, hull) = match ring {
+            Some((kind, reversed)) => {
+                let mut outline = plane.clone();
+                let mut ids: Points<u32> = match names {
+                    VertexIds::Named => points.iter().map(|f| f.id).collect(),
+                    VertexIds::Unnamed => Points::new(),
+                };
+                if reversed {
+                    outline.reverse();
+                    ids.reverse();
+                }
+                (outline, kind, ids, None)
+            }
+            None => {
+                let hull = ConvexPolygon::from_points(&plane).ok()?;
+                // The hull's vertices are copies of its input points.
+                let ids = match names {
+                    VertexIds::Named => hull
+                        .vertices()
                         .iter()
-                        .position(|p| p == v)
-                        .map_or(0, |k| points[k].id)
-                })
-                .collect(),
-            VertexIds::Unnamed => Points::new(),
+                        .map(|v| {
+                            plane
+                                .iter()
+                                .position(|p| p == v)
+                                .map_or(0, |k| points[k].id)
+                        })
+                        .collect(),
+                    VertexIds::Unnamed => Points::new(),
+                };
+                (
+                    Points::from_slice(hull.vertices()),
+                    hull.kind(),
+                    ids,
+                    Some(hull),
+                )
+            }
         };
         let height = |f: &FeaturePoint| (f.point - frame.origin).dot(&frame.normal);
-        let coefficients = match (outline.kind(), feature.face_normal, &points[..]) {
+        let coefficients = match (kind, feature.face_normal, &points[..]) {
             (PolygonKind::Point, ..) => {
                 let mean_height = points.iter().map(height).sum::<f64>() / points.len() as f64;
                 Vector3::new(mean_height, 0.0, 0.0)
@@ -462,10 +491,14 @@ impl Surface {
                 let slope = along * ((height(p1) - height(p0)) / along.norm_squared());
                 Vector3::new(height(p0) - slope.dot(&q0.coords), slope.x, slope.y)
             }
-            _ => least_squares_plane(&outline, &plane, points.iter().map(height))?,
+            _ => {
+                let hull = hull.or_else(|| ConvexPolygon::from_points(&plane).ok())?;
+                least_squares_plane(&hull, &plane, points.iter().map(height))?
+            }
         };
         Some(Self {
             outline,
+            kind,
             ids,
             coefficients,
         })
@@ -477,7 +510,7 @@ impl Surface {
 
     /// The id of the first point of the outline edge nearest to `p` (counter-clockwise).
     fn edge_nearest(&self, p: &Point2<f64>) -> u32 {
-        let v = self.outline.vertices();
+        let v = &self.outline;
         (0..v.len())
             .map(|k| {
                 let q = closest_point_on_segment(&v[k], &v[ring_next(k, v.len())], p);
@@ -485,6 +518,31 @@ impl Surface {
             })
             .min_by(|a, b| a.0.total_cmp(&b.0))
             .map_or(0, |(_, id)| id)
+    }
+}
+
+/// What the points of a ring (around a feature's outline in order, either way) enclose, and
+/// whether they go clockwise; `None` when they do not clearly enclose it (a sliver of a face
+/// seen edge-on, an edge seen end-on), which the hull settles. Projected within the feature
+/// angle of their own plane, a box's face or a cylinder's cap keeps its shape: no vertex comes
+/// near its neighbours' chord.
+fn ring_kind(ring: &[Point2<f64>]) -> Option<(PolygonKind, bool)> {
+    // Clear: an edge longer than 1e-6 of the points' reach from the origin (the features'
+    // middle), an area more than 1e-6 of the points' bounding box squared.
+    let reach = ring.iter().map(|p| p.coords.norm()).fold(0.0, f64::max);
+    match ring {
+        [_] => Some((PolygonKind::Point, false)),
+        [p, q] => ((q - p).norm() > 1e-6 * reach).then_some((PolygonKind::Segment, false)),
+        _ => {
+            let twice_area: f64 = (0..ring.len())
+                .map(|k| ring[k].coords.perp(&ring[ring_next(k, ring.len())].coords))
+                .sum();
+            let (lo, hi) = ring
+                .iter()
+                .fold((ring[0], ring[0]), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
+            (twice_area.abs() > 1e-6 * (hi - lo).norm_squared())
+                .then_some((PolygonKind::Polygon, twice_area < 0.0))
+        }
     }
 }
 
@@ -517,15 +575,16 @@ fn least_squares_plane(
     ))
 }
 
-/// The overlap of two convex outlines (points, segments or polygons), as unordered points.
-fn overlap(a: &ConvexPolygon, b: &ConvexPolygon) -> Points<Point2<f64>> {
-    match (a.kind(), b.kind()) {
-        (PolygonKind::Point, _) => Points::from_slice(a.vertices()),
-        (_, PolygonKind::Point) => Points::from_slice(b.vertices()),
-        (PolygonKind::Polygon, PolygonKind::Polygon) => clip_polygon(a.vertices(), b.vertices()),
-        (PolygonKind::Segment, PolygonKind::Polygon) => clip_segment(a.vertices(), b.vertices()),
-        (PolygonKind::Polygon, PolygonKind::Segment) => clip_segment(b.vertices(), a.vertices()),
-        (PolygonKind::Segment, PolygonKind::Segment) => segment_overlap(a, b),
+/// The overlap of two features' outlines (points, segments or polygons), as unordered points.
+fn overlap(a: &Surface, b: &Surface) -> Points<Point2<f64>> {
+    let (a_points, b_points) = (&a.outline[..], &b.outline[..]);
+    match (a.kind, b.kind) {
+        (PolygonKind::Point, _) => Points::from_slice(a_points),
+        (_, PolygonKind::Point) => Points::from_slice(b_points),
+        (PolygonKind::Polygon, PolygonKind::Polygon) => clip_polygon(a_points, b_points),
+        (PolygonKind::Segment, PolygonKind::Polygon) => clip_segment(a_points, b_points),
+        (PolygonKind::Polygon, PolygonKind::Segment) => clip_segment(b_points, a_points),
+        (PolygonKind::Segment, PolygonKind::Segment) => segment_overlap(a_points, b_points),
     }
 }
 
@@ -577,9 +636,9 @@ fn clip_segment(s: &[Point2<f64>], clip: &[Point2<f64>]) -> Points<Point2<f64>> 
 }
 
 /// Two segments: their common part when (nearly) parallel, else their crossing point.
-fn segment_overlap(a: &ConvexPolygon, b: &ConvexPolygon) -> Points<Point2<f64>> {
-    let (a0, a1) = (a.vertices()[0], a.vertices()[1]);
-    let (b0, b1) = (b.vertices()[0], b.vertices()[1]);
+fn segment_overlap(a: &[Point2<f64>], b: &[Point2<f64>]) -> Points<Point2<f64>> {
+    let (a0, a1) = (a[0], a[1]);
+    let (b0, b1) = (b[0], b[1]);
     let (da, db) = (a1 - a0, b1 - b0);
     let cross = da.perp(&db);
     // Parallel within about a degree: the edges lie along each other.
@@ -620,6 +679,7 @@ mod tests {
     fn fitted(points: &[FeaturePoint]) -> Feature {
         Feature {
             points: points.to_vec(),
+            ring: false,
             face_normal: None,
         }
     }
@@ -837,19 +897,31 @@ mod tests {
                 .into_iter()
                 .map(|f| FeaturePoint { point: centre + lean * (twist * f.point.coords), ..f })
                 .collect();
-            let placed = Feature { points: face.clone(), face_normal: Some(lean * Vector3::z()) };
-            let by_plane = Surface::fit(&frame, &placed, VertexIds::Unnamed).unwrap();
-            let by_fit = Surface::fit(&frame, &fitted(&face), VertexIds::Unnamed).unwrap();
+            // Around the face either way: the ring is the hull, counter-clockwise.
+            let mut backwards = face.clone();
+            backwards.reverse();
+            let by_fit = Surface::fit(&frame, &fitted(&face), VertexIds::Named).unwrap();
             let scale = 1e-9 * (1.0 + x.abs() + y.abs() + z.abs());
-            for p in by_fit.outline.vertices().iter().chain([&Point2::new(0.1, 0.7)]) {
-                prop_assert!((by_plane.height(p) - by_fit.height(p)).abs() < scale);
+            for points in [face.clone(), backwards] {
+                let placed = Feature { points, ring: true, face_normal: Some(lean * Vector3::z()) };
+                let by_plane = Surface::fit(&frame, &placed, VertexIds::Named).unwrap();
+                prop_assert_eq!(by_plane.kind, PolygonKind::Polygon);
+                let start = by_plane.ids.iter().position(|&id| id == by_fit.ids[0]).unwrap();
+                for k in 0..4 {
+                    prop_assert_eq!(by_plane.ids[(start + k) % 4], by_fit.ids[k]);
+                    prop_assert_eq!(by_plane.outline[(start + k) % 4], by_fit.outline[k]);
+                }
+                for p in by_fit.outline.iter().chain([&Point2::new(0.1, 0.7)]) {
+                    prop_assert!((by_plane.height(p) - by_fit.height(p)).abs() < scale);
+                }
             }
             let ends = [Point3::new(-half, 0.2, 0.0), Point3::new(half, 0.2, 2.0 * half * edge_slope)];
             let edge: Vec<_> = numbered(ends.map(|p| centre + twist * p.coords).to_vec());
             let by_line = Surface::fit(&frame, &fitted(&edge), VertexIds::Unnamed).unwrap();
             let plane: Vec<_> = edge.iter().map(|f| frame.to_plane(&f.point)).collect();
             let heights = edge.iter().map(|f| (f.point - frame.origin).dot(&frame.normal));
-            let fit = least_squares_plane(&by_line.outline, &plane, heights).unwrap();
+            let hull = ConvexPolygon::from_points(&plane).unwrap();
+            let fit = least_squares_plane(&hull, &plane, heights).unwrap();
             for p in plane.iter().chain([&nalgebra::center(&plane[0], &plane[1])]) {
                 let least = fit.dot(&Vector3::new(1.0, p.x, p.y));
                 prop_assert!((by_line.height(p) - least).abs() < scale);

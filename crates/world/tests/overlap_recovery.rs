@@ -75,8 +75,9 @@ fn two_coincident_cubes_separate_gently() {
 /// push in the velocities they reached 53 m/s; by default the push moves positions only and
 /// none gains any speed, while 0.2 m/s of it in the velocity solve gave 1.4 m/s). No body is
 /// pushed faster than 1 m/s, so the heap's surface spreads at most that fast: from 1.5 m to the
-/// ~5 m radius 500 m³ needs takes about 4 s; after 6 s the deepest of the 27 000 initial
-/// overlaps (1.2 m) is below 1 cm.
+/// ~5 m radius 500 m³ needs takes about 4 s. When the last of the 27 000 initial overlaps
+/// (1.2 m) falls below 5 cm depends on the heap: between 5.3 and 6.6 s on twelve seeded heaps
+/// (median 5.7 s), so the test waits 8 s.
 #[test]
 fn five_hundred_overlapping_cubes_separate_without_explosion() {
     let mut world = overlapping_cubes(World::builder().gravity([0.0; 3]));
@@ -84,7 +85,7 @@ fn five_hundred_overlapping_cubes_separate_without_explosion() {
     let mut worst: f64 = 0.0;
     world.step(0.01).unwrap();
     let start = deepest(&world);
-    for _ in 0..600 {
+    for _ in 0..800 {
         world.step(0.01).unwrap();
         worst = worst.max(fastest(&world));
     }
@@ -93,7 +94,7 @@ fn five_hundred_overlapping_cubes_separate_without_explosion() {
     assert!(worst < 5.0, "a cube reached {worst} m/s");
     assert!(
         start > 1.0 && end < 0.05,
-        "overlap {start} m → {end} m after 6 s"
+        "overlap {start} m → {end} m after 8 s"
     );
 }
 
