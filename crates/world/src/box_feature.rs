@@ -101,6 +101,11 @@ pub(crate) fn cuboid_feature(
             out.face_normal = Some(axes.column(k) * signs[k]);
         }
     }
+    // The search lists the corners by number; starting the ring at the lowest keeps the first
+    // point, where the contact frame's origin is taken from, the search's.
+    if let Some(lowest) = (0..out.points.len()).min_by_key(|&k| out.points[k].id) {
+        out.points.rotate_left(lowest);
+    }
     true
 }
 
@@ -153,6 +158,7 @@ mod tests {
                 ids
             };
             prop_assert_eq!(numbers(&read), numbers(&searched));
+            prop_assert_eq!(read.points[0].id, searched.points[0].id, "the first point");
             for p in &read.points {
                 let q = searched.points.iter().find(|q| q.id == p.id).expect("same numbers");
                 prop_assert!((p.point - q.point).norm() < 1e-12 * (1.0 + h.norm()));
