@@ -1,16 +1,18 @@
-//! The separating axis of two boxes: parry's answer, to the bit, for less.
+//! The separating axis of two boxes: parry's axis, by parry's rule, for less.
 //!
 //! parry's `sat_cuboid_cuboid` tries 15 axes (three face normals of each box and the nine
 //! cross products of their edges) with two quaternion rotations an axis, and a resting pile
 //! of 1000 cubes asks it for some 1,600 touching pairs a step. For a touching pair, every
-//! axis's separation is found here first from the columns of the relative rotation (computed
-//! as parry computes them) in a few multiplications: `|t·a| − Σ h₁ᵢ|aᵢ| − Σ h₂ⱼ|cⱼ·a|`. Only
-//! the axes within [`CLOSE`] of the best are then evaluated with parry's own functions, and the
-//! winner is picked in parry's order with parry's tie rule, so the normal and every trajectory
-//! are the same as with parry alone (a test checks it bit for bit on random pairs). A pair
-//! separated beyond the prediction along one face normal of a box, and along no other of it, is
-//! answered `None` here, as parry would; other pairs separated along some face normal, which
-//! parry may answer with a blend of normals, are left to parry unchanged.
+//! axis's separation is found here instead from the columns of the relative rotation (computed
+//! as parry computes them) in a few multiplications: `|t·a| − Σ h₁ᵢ|aᵢ| − Σ h₂ⱼ|cⱼ·a|`, within
+//! about 1e-15 of the pair's size of parry's. The winner is the first largest in parry's order,
+//! turned from box 1 towards box 2 as parry turns it, so the normal is parry's up to rounding,
+//! or, where two axes tie within rounding, one that separates the boxes as much by parry's own
+//! measure (a test checks both on random pairs). Evaluating the winning axes again with
+//! parry's functions, to match its bits, was a twentieth of the 1000-cube pile's collision. A
+//! pair separated beyond the prediction along one face normal of a box, and along no other of
+//! it, is answered `None` here, as parry would; other pairs separated along some face normal,
+//! which parry may answer with a blend of normals, are left to parry unchanged.
 
 use parry3d_f64::math::{Pose, Vector};
 use parry3d_f64::query::sat as parry_sat;
@@ -18,10 +20,9 @@ use parry3d_f64::shape::Cuboid;
 
 use crate::apart::FaceGap;
 
-/// Relative gap, as a fraction of the pair's size (`|t|₁ + |h₁|₁ + |h₂|₁`), within which two
-/// axes' quick separations count as a tie to be settled by parry's exact arithmetic. Both
-/// evaluations sum at most seven terms bounded by that size, so each is within about 1e-15 of
-/// it: 1e-12 leaves a factor of a thousand.
+/// Relative gap, as a fraction of the pair's size (`|t|₁ + |h₁|₁ + |h₂|₁`), within which a
+/// quick separation may differ from parry's: both sum at most seven terms bounded by that size,
+/// so each is within about 1e-15 of it; 1e-12 leaves a factor of a thousand.
 const CLOSE: f64 = 1e-12;
 
 /// The separating axis of two boxes (in box 1's frame, pointing out of box 1) that parry's SAT
@@ -95,8 +96,8 @@ fn parry_normal(box1: &Cuboid, box2: &Cuboid, pos12: &Pose, prediction: f64) -> 
 }
 
 /// [`parry_normal`]'s answer, from quick separations: for a pair overlapping along all six face
-/// normals, with parry's arithmetic on the close axes only; for a pair apart along one face
-/// normal of a box and no other of it, `None`. `None` (ask parry) for any other pair,
+/// normals, the first axis of largest separation (see the module doc); for a pair apart along
+/// one face normal of a box and no other of it, `None`. `None` (ask parry) for any other pair,
 /// non-finite input included. `faces` is [`face_separations`]'s answer for the pair.
 fn quick_normal(
     box1: &Cuboid,
@@ -145,39 +146,18 @@ fn quick_normal(
     if !best.is_finite() {
         return None;
     }
-    let near = |k: usize| separations[k] >= best - close;
-    // The close axes with parry's separations, in parry's order; a face group is evaluated
-    // whole, as parry returns its best.
-    let mut candidates: [Option<(f64, Vector)>; 11] = [None; 11];
-    if (0..3).any(near) {
-        candidates[0] =
-            Some(parry_sat::cuboid_cuboid_find_local_separating_normal_oneway(box1, box2, pos12));
-    }
-    if (3..6).any(near) {
-        let faces2 = parry_sat::cuboid_cuboid_find_local_separating_normal_oneway(
-            box2,
-            box1,
-            &pos12.inverse(),
-        );
-        candidates[1] = Some((faces2.0, pos12.rotation * -faces2.1));
-    }
-    for (k, axis) in edge_axes.iter().enumerate() {
-        if let Some((l, norm)) = *axis
-            && near(6 + k)
-        {
-            candidates[2 + k] = Some(parry_sat::cuboid_cuboid_compute_separation_wrt_local_line(
-                box1,
-                box2,
-                pos12,
-                l / norm,
-            ));
+    // The first axis of largest separation, in parry's order, oriented from box 1 to box 2.
+    let winner = (0..15).find(|&k| separations[k] == best)?;
+    let axis = match winner {
+        0..3 => Vector::from_array(std::array::from_fn(|k| f64::from(u8::from(k == winner)))),
+        3..6 => c[winner - 3],
+        _ => {
+            let (l, norm) = edge_axes[winner - 6]?;
+            l / norm
         }
-    }
-    let winner = candidates
-        .into_iter()
-        .flatten()
-        .reduce(|best, axis| if axis.0 > best.0 { axis } else { best })?;
-    Some((winner.0 <= prediction).then_some(winner.1))
+    };
+    let normal = axis * 1f64.copysign(t.dot(axis));
+    Some((best <= prediction).then_some(normal))
 }
 
 /// How far box 2 (half extents `h2`, axes `c` in box 1's frame) reaches along axis `a` from its
@@ -212,18 +192,10 @@ mod tests {
     use crate::parry_bridge::tests::uniform_from;
     use parry3d_f64::math::Rotation;
 
-    fn bits(normal: Option<Vector>) -> Option<[u64; 3]> {
-        normal.map(|v| v.to_array().map(f64::to_bits))
-    }
-
-    /// Random box pairs of 1 cm to 10 m, turned at random, by a few exact quarter turns, by
-    /// nothing, or by a hair (1e-9 rad, where face axes tie within rounding), placed from deep
-    /// overlap to just beyond the prediction: the quick test gives parry's normal to the bit,
-    /// and settles most overlapping pairs, and many pairs apart, itself.
     #[test]
     fn the_normal_is_parrys_to_the_bit() {
         let mut uniform = uniform_from(2024);
-        let (mut quick, mut apart) = (0, 0);
+        let (mut quick, mut apart, mut ties) = (0, 0, 0);
         let cases = 100_000;
         for case in 0..cases {
             let scale = [0.01, 0.1, 1.0, 10.0][case % 4];
@@ -246,7 +218,24 @@ mod tests {
             let prediction = 0.005 * scale;
             let expected = parry_normal(&box1, &box2, &pos12, prediction);
             let got = cuboid_normal(&box1, &box2, &pos12, prediction);
-            assert_eq!(bits(got.ok()), bits(expected), "case {case}");
+            assert_eq!(got.is_ok(), expected.is_some(), "case {case}");
+            if let (Ok(got), Some(expected)) = (got, expected) {
+                let along = |axis: Vector| {
+                    parry_sat::cuboid_cuboid_compute_separation_wrt_local_line(
+                        &box1, &box2, &pos12, axis,
+                    )
+                };
+                let (best, ours) = (along(expected), along(got));
+                let size = translation.abs().element_sum() + h1.element_sum() + h2.element_sum();
+                assert!(
+                    ours.0 >= best.0 - CLOSE * size,
+                    "case {case}: {ours:?} {best:?}"
+                );
+                assert!(ours.1.dot(got) > 0.0, "case {case}: turned towards box 2");
+                if got.angle_between(expected) > 1e-12 {
+                    ties += 1;
+                }
+            }
             // A gap is reported exactly when a face normal separates by more than `prediction`.
             let (faces, _) = face_separations(&box1, &box2, &pos12);
             let widest = faces.into_iter().fold(f64::NEG_INFINITY, f64::max);
@@ -269,6 +258,12 @@ mod tests {
         assert!(
             apart > cases / 20,
             "the quick test found {apart} pairs apart of {cases}"
+        );
+        // A tie within rounding that the two arithmetics settle differently is rare (none of
+        // these pairs, the quarter turns and the hair included, when this was written).
+        assert!(
+            ties < cases / 100,
+            "{ties} of {cases} normals differ from parry's"
         );
     }
 }
