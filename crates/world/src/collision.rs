@@ -249,6 +249,12 @@ fn contact_of(
     let Some(s) = support(&features.a, &features.b, &normal, depths, ids) else {
         return Found::Nothing;
     };
+    // The polygon's mean distance from its centroid (`r̄`, exact area moments with a logarithm
+    // an edge), which the face model's rows read for every face contact, is found here on
+    // every core and kept in the polygon, instead of in the rows' serial stage (a fifth of it
+    // on the 1000-cube pile: 0.65–0.76 → 0.52–0.54 ms on one thread); the other models do not
+    // read it.
+    s.polygon.centroid_mean_distance();
     let contact = Contact {
         body_a: BodyId(i),
         body_b: BodyId(j),
