@@ -682,6 +682,18 @@ mod tests {
             .collect()
     }
 
+    /// The named support polygon of A's points resting on B's, the normal along z.
+    fn named_on_z(a: &[FeaturePoint], b: &[FeaturePoint]) -> Support {
+        support(
+            &fitted(a),
+            &fitted(b),
+            &Vector3::z(),
+            Vec::new(),
+            VertexIds::Named,
+        )
+        .unwrap()
+    }
+
     /// A feature whose heights are fitted, as a hull's.
     fn fitted(points: &[FeaturePoint]) -> Feature {
         Feature {
@@ -705,14 +717,7 @@ mod tests {
     fn twisted_squares_overlap_in_a_regular_octagon() {
         let a = square(1.0, std::f64::consts::FRAC_PI_4, 0.0);
         let b = square(1.0, 0.0, 0.0);
-        let s = support(
-            &fitted(&a),
-            &fitted(&b),
-            &Vector3::z(),
-            Vec::new(),
-            VertexIds::Named,
-        )
-        .unwrap();
+        let s = named_on_z(&a, &b);
         assert_eq!(s.polygon.vertices().len(), 8);
         // Regular octagon with inradius 1: area 8 tan(π/8).
         let expected = 8.0 * (std::f64::consts::PI / 8.0).tan();
@@ -741,14 +746,7 @@ mod tests {
             })
             .collect();
         let b = square(2.0, 0.0, 0.0);
-        let s = support(
-            &fitted(&a),
-            &fitted(&b),
-            &Vector3::z(),
-            Vec::new(),
-            VertexIds::Named,
-        )
-        .unwrap();
+        let s = named_on_z(&a, &b);
         for (v, d) in s.polygon.vertices().iter().zip(&s.depths) {
             let world = s.frame.to_world(v);
             assert!(
@@ -766,14 +764,7 @@ mod tests {
             Point3::new(3.0, 0.5, 0.0),
         ]);
         let b = square(1.0, 0.0, 0.0);
-        let s = support(
-            &fitted(&a),
-            &fitted(&b),
-            &Vector3::z(),
-            Vec::new(),
-            VertexIds::Named,
-        )
-        .unwrap();
+        let s = named_on_z(&a, &b);
         assert_eq!(s.polygon.kind(), PolygonKind::Segment);
         let ends: Vec<_> = s
             .polygon
@@ -799,14 +790,7 @@ mod tests {
             Point3::new(0.25, -1.0, 0.0),
             Point3::new(0.25, 1.0, 0.0),
         ]);
-        let s = support(
-            &fitted(&a),
-            &fitted(&b),
-            &Vector3::z(),
-            Vec::new(),
-            VertexIds::Named,
-        )
-        .unwrap();
+        let s = named_on_z(&a, &b);
         assert_eq!(s.polygon.kind(), PolygonKind::Point);
         assert!(
             (s.frame.to_world(&s.polygon.vertices()[0]) - Point3::new(0.25, 0.0, 0.0)).norm()
@@ -818,28 +802,14 @@ mod tests {
     fn feature_ids_name_the_corners_and_crossings_and_survive_a_small_motion() {
         // A small square on a large one: its four corners, all of A.
         let small = square(0.5, 0.3, 0.0);
-        let s = support(
-            &fitted(&small),
-            &fitted(&square(2.0, 0.0, 0.0)),
-            &Vector3::z(),
-            Vec::new(),
-            VertexIds::Named,
-        )
-        .unwrap();
+        let s = named_on_z(&small, &square(2.0, 0.0, 0.0));
         let mut ids = s.features.clone();
         ids.sort();
         assert_eq!(ids[..], (0..4).map(FeatureId::A).collect::<Vec<_>>());
         // Twisted equal squares: eight crossings, each a different pair of edges.
         let a = square(1.0, std::f64::consts::FRAC_PI_4, 0.0);
         let b = square(1.0, 0.0, 0.0);
-        let s = support(
-            &fitted(&a),
-            &fitted(&b),
-            &Vector3::z(),
-            Vec::new(),
-            VertexIds::Named,
-        )
-        .unwrap();
+        let s = named_on_z(&a, &b);
         let mut crossings = s.features.clone();
         crossings.sort();
         crossings.dedup();
@@ -857,14 +827,7 @@ mod tests {
                 ..*f
             })
             .collect();
-        let after = support(
-            &fitted(&moved),
-            &fitted(&b),
-            &Vector3::z(),
-            Vec::new(),
-            VertexIds::Named,
-        )
-        .unwrap();
+        let after = named_on_z(&moved, &b);
         for (v, id) in after.polygon.vertices().iter().zip(&after.features) {
             let before = s.features[s
                 .polygon
