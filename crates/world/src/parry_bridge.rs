@@ -137,7 +137,8 @@ impl Collider {
     }
 }
 
-/// A box's eight corners in its frame.
+/// A box's eight corners in its frame, corner `i` on the `+k` side where bit `k` of `i` is set:
+/// the numbering [`crate::box_feature`] names a box's feature points by.
 fn corners(cuboid: &Cuboid) -> Vec<Vector3<f64>> {
     let h = from_glam(cuboid.half_extents);
     (0..8)
