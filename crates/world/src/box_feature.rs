@@ -112,14 +112,17 @@ pub(crate) fn cuboid_feature(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::Shape;
+    use crate::parry_bridge::Collider;
     use crate::support::Outline;
     use proptest::prelude::*;
 
-    /// A box's corners numbered as its hull vertices are (bit `k` set on the `+k` side).
+    /// A box's corners as the world lists them for its outline.
     fn corners(h: &Vector3<f64>) -> Vec<Vector3<f64>> {
-        (0..8)
-            .map(|i: u8| Vector3::from_fn(|k, _| if i & (1 << k) == 0 { -h[k] } else { h[k] }))
-            .collect()
+        let shape = Shape::cuboid([2.0 * h.x, 2.0 * h.y, 2.0 * h.z]);
+        Collider::new(&shape)
+            .and_then(|collider| collider.hull_vertices())
+            .expect("a box has corners")
     }
 
     /// Against the general search over the box's corners: the same corners (by number, and in
