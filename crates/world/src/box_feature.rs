@@ -37,12 +37,9 @@ pub(crate) fn cuboid_feature(
     let local = rotation.inverse_transform_vector(direction);
     // The search's thresholds: candidates within `radius · sin(angle)` below the extreme; a
     // candidate dropped when another is above it by more than `eps` and more steeply than the
-    // angle (see `keep_within_angle`).
+    // angle ([`FeatureAngle::is_steeper`]).
     let (band, eps) = (radius * angle.sin, 1e-9 * radius);
-    let steep = |drop: f64, run_squared: f64| {
-        let height = drop - eps;
-        height > 0.0 && height * height > run_squared * angle.tan_squared
-    };
+    let steep = |drop: f64, run_squared: f64| angle.is_steeper(drop, run_squared, eps);
     // How far a flip of each axis lowers the corner, and whether that axis is flat.
     let drops = Vector3::from_fn(|k, _| 2.0 * h[k] * local[k].abs());
     let flat: [bool; 3] = std::array::from_fn(|k| {

@@ -140,7 +140,7 @@ fn cap_directions() -> &'static [(f64, f64); CAP_VERTICES] {
 pub(crate) struct FeatureAngle {
     pub(crate) cos: f64,
     pub(crate) sin: f64,
-    pub(crate) tan_squared: f64,
+    tan_squared: f64,
 }
 
 impl FeatureAngle {
@@ -151,6 +151,15 @@ impl FeatureAngle {
             sin: angle.sin(),
             tan_squared: angle.tan().powi(2),
         }
+    }
+
+    /// Whether a point `rise` above another, by more than `eps`, over a horizontal run whose
+    /// square is `run_squared`, lies above it more steeply than the angle: the rule that keeps
+    /// the lower point out of a feature. `rise − eps > run · tan(angle)`, squared to keep
+    /// square roots out of the feature searches' loops.
+    pub(crate) fn is_steeper(&self, rise: f64, run_squared: f64, eps: f64) -> bool {
+        let height = rise - eps;
+        height > 0.0 && height * height > run_squared * self.tan_squared
     }
 }
 
@@ -269,18 +278,19 @@ impl Outline {
                             id,
                         }),
                 );
-                keep_within_angle(out, direction, angle.tan_squared, 1e-9 * radius);
+                keep_within_angle(out, direction, angle, 1e-9 * radius);
                 feature.ring = out.len() <= 2;
             }
         }
     }
 }
 
-/// Drops from `points` every point that another lies above more steeply than the feature angle
-/// (`slope_squared` its tangent squared) along the unit `direction`: what is left is the face,
-/// edge or corner tilted by less than that angle from the plane normal to `direction`. Unlike a height threshold this does not depend on the
-/// body's size: the far bottom corners of a wide, thin slab are within any fixed height of its
-/// top face, but every one lies straight below a top corner.
+/// Drops from `points` every point that another lies above more steeply than the feature
+/// `angle` along the unit `direction` ([`FeatureAngle::is_steeper`]): what is left is the face,
+/// edge or corner tilted by less than that angle from the plane normal to `direction`. Unlike a
+/// height threshold this does not depend on the body's size: the far bottom corners of a wide,
+/// thin slab are within any fixed height of its top face, but every one lies straight below a
+/// top corner.
 ///
 /// "Steeply above" is transitive (the slopes add along a chain, the horizontal offsets obey the
 /// triangle inequality), so a point dominated by a dropped point is also dominated by a kept
@@ -288,18 +298,16 @@ impl Outline {
 fn keep_within_angle(
     points: &mut Vec<FeaturePoint>,
     direction: &Vector3<f64>,
-    slope_squared: f64,
+    angle: &FeatureAngle,
     eps: f64,
 ) {
-    // `height > |horizontal| · tan(angle) + eps`, squared to keep square roots out of the loop.
     let mut kept = 0;
     for i in 0..points.len() {
         let v = points[i];
         let above = |u: &FeaturePoint| {
             let offset = u.point - v.point;
-            let height = offset.dot(direction) - eps;
-            let horizontal_squared = offset.norm_squared() - offset.dot(direction).powi(2);
-            height > 0.0 && height * height > horizontal_squared * slope_squared
+            let rise = offset.dot(direction);
+            angle.is_steeper(rise, offset.norm_squared() - rise.powi(2), eps)
         };
         let dominated = points[..kept].iter().chain(&points[i + 1..]).any(above);
         if !dominated {
