@@ -22,7 +22,10 @@ use crate::jacobian::{angular_jacobian, point_jacobian, point_motion, twist_rate
 use crate::segment::SegmentProjection;
 use crate::target::normal_target;
 use crate::vertex;
-use crate::{Contact, ContactProjection, ContactSettings, FrictionCone, TwistRadius};
+use crate::{
+    BEARING_DEPTH, Contact, ContactProjection, ContactSettings, FrictionCone, TwistRadius,
+    bearing_part,
+};
 
 /// Rows of a face constraint.
 pub const ROWS: usize = 6;
@@ -196,11 +199,31 @@ impl Projection for FaceProjection {
     }
 }
 
-/// Appends one 6-row block at the support polygon's centroid and each row's penetration bias
-/// to `biases` — for a segment the 5-row block of [`crate::segment`] (but with the
-/// parallel-torque variant, which reads both tilts), for a point support the vertex model's
-/// 3-row block (see the module doc). The contact must be validated.
+/// Appends one 6-row block at the centroid of the support polygon's bearing part (within
+/// [`BEARING_DEPTH`] of its deepest point: [`bearing_part`]; all of it when pressed in deeper
+/// than the slop) and each row's penetration bias to `biases` —
+/// for a segment the 5-row block of [`crate::segment`] (but with the parallel-torque variant,
+/// which reads both tilts), for a point support the vertex model's 3-row block (see the module
+/// doc). The contact must be validated.
 pub(crate) fn build(
+    contact: &Contact,
+    dt: f64,
+    settings: &ContactSettings,
+    problem: &mut Problem<ContactProjection>,
+    biases: &mut Vec<f64>,
+) {
+    // Pressed in beyond the slop, the overlap is being pushed out over all of it.
+    let bearing = (contact.depth() <= settings.slop)
+        .then(|| bearing_part(contact, BEARING_DEPTH))
+        .flatten();
+    match bearing {
+        Some(bearing) => build_bearing(&bearing, dt, settings, problem, biases),
+        None => build_bearing(contact, dt, settings, problem, biases),
+    }
+}
+
+/// [`build`] on a contact that bears on all of its support polygon.
+fn build_bearing(
     contact: &Contact,
     dt: f64,
     settings: &ContactSettings,

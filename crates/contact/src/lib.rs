@@ -47,6 +47,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod bearing;
 mod contact;
 mod error;
 pub mod face;
@@ -63,6 +64,7 @@ mod settings;
 mod target;
 pub mod vertex;
 
+pub use bearing::{BEARING_DEPTH, bearing_part};
 pub use contact::Contact;
 pub use error::ContactError;
 pub use frame::ContactFrame;

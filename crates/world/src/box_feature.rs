@@ -35,10 +35,11 @@ pub(crate) fn cuboid_feature(
     let h = half_extents;
     let radius = h.norm();
     let local = rotation.inverse_transform_vector(direction);
-    // The search's thresholds: candidates within `radius · sin(angle)` below the extreme; a
-    // candidate dropped when another is above it by more than `eps` and more steeply than the
-    // angle ([`FeatureAngle::is_steeper`]).
-    let (band, eps) = (radius * angle.sin, 1e-9 * radius);
+    // The search's thresholds: candidates within `2 radius · sin(angle) + eps` below the
+    // extreme; a candidate dropped when another is above it by more than `eps` and more
+    // steeply than the angle ([`FeatureAngle::is_steeper`]).
+    let eps = 1e-9 * radius;
+    let band = 2.0 * radius * angle.sin + eps;
     let steep = |drop: f64, run_squared: f64| angle.is_steeper(drop, run_squared, eps);
     // How far a flip of each axis lowers the corner, and whether that axis is flat.
     let drops = Vector3::from_fn(|k, _| 2.0 * h[k] * local[k].abs());

@@ -267,8 +267,14 @@ impl Outline {
                     .iter()
                     .map(|v| v.dot(&local))
                     .fold(f64::NEG_INFINITY, f64::max);
-                // Candidates: every vertex within `radius · sin(angle)` of the extreme.
-                let tolerance = radius * angle.sin;
+                // Candidates: every vertex within `2 radius · sin(angle) + eps` of the extreme.
+                // The rule below keeps no vertex lower than that: one the extreme is not above
+                // more steeply than the angle lies at most `|E − v| · sin(angle) + eps` below
+                // it, and no two vertices are more than `2 radius` apart. (A band of `radius ·
+                // sin(angle)` dropped a cube's far face edge from a tilt of 0.87° under a 1°
+                // angle, and a longer face's earlier still.)
+                let eps = 1e-9 * radius;
+                let tolerance = 2.0 * radius * angle.sin + eps;
                 out.extend(
                     (0u32..)
                         .zip(vertices)
@@ -278,7 +284,7 @@ impl Outline {
                             id,
                         }),
                 );
-                keep_within_angle(out, direction, angle, 1e-9 * radius);
+                keep_within_angle(out, direction, angle, eps);
                 feature.ring = out.len() <= 2;
             }
         }
@@ -905,5 +911,57 @@ mod tests {
                 prop_assert!((by_line.height(p) - least).abs() < scale);
             }
         });
+    }
+
+    /// A face tilted from the contact plane by just less than the feature angle is kept whole,
+    /// and by just more is cut to its lowest edge: the angle alone decides, not the body's
+    /// proportions. For a cube, a 3 m × 0.2 m slab and a thin plate, read off the box's axes and
+    /// searched among the same corners as a hull, the bottom face tilted about either of its
+    /// edge directions, either way, then turned about the normal. (The search's candidate band
+    /// used to drop a cube's far face edge from 0.87° under a 1° angle.)
+    #[test]
+    fn a_face_is_kept_whole_up_to_the_feature_angle() {
+        let degree = 1f64.to_radians();
+        let angle = FeatureAngle::new(degree);
+        for h in [
+            Vector3::new(0.5, 0.5, 0.5),
+            Vector3::new(1.5, 0.1, 0.5),
+            Vector3::new(0.02, 2.0, 0.3),
+        ] {
+            let corners: Vec<_> = (0..8)
+                .map(|k| {
+                    let side = |bit: usize| if k & (1 << bit) == 0 { -1.0 } else { 1.0 };
+                    Vector3::new(side(0) * h.x, side(1) * h.y, side(2) * h.z)
+                })
+                .collect();
+            let outlines = [
+                ("box", Outline::polyhedron(corners.clone(), Some(h))),
+                ("hull", Outline::polyhedron(corners, None)),
+            ];
+            let tilts = [
+                (Vector3::x(), 0.3),
+                (Vector3::y(), 2.1),
+                (-Vector3::x(), -1.2),
+                (-Vector3::y(), 4.0),
+            ];
+            for (edge, turn) in tilts {
+                // 2% either side of the angle: far beyond rounding and the 1e-9 m tolerance.
+                for (tilt, whole) in [(0.98, true), (1.02, false)] {
+                    let rotation = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), turn)
+                        * UnitQuaternion::from_scaled_axis(edge * tilt * degree);
+                    for (name, outline) in &outlines {
+                        let mut feature = Feature::default();
+                        let origin = Point3::new(1.0, -2.0, 0.5);
+                        outline.feature(&origin, &rotation, &-Vector3::z(), &angle, &mut feature);
+                        let expected = if whole { 4 } else { 2 };
+                        assert_eq!(
+                            feature.points.len(),
+                            expected,
+                            "{name} {h:?} tilted {tilt}° about {edge:?}"
+                        );
+                    }
+                }
+            }
+        }
     }
 }

@@ -85,6 +85,28 @@ fn a_cube_on_an_edge_gives_a_segment() {
     assert!(((s.vertices()[0] - s.vertices()[1]).norm() - SIDE).abs() < 1e-9);
 }
 
+/// A cube tilted by less than the feature angle (1° by default) rests on its whole bottom face,
+/// and by more on its lowest edge: the face's far edge, 3.3 cm up at 0.95°, stays in the
+/// support polygon. Turned 30° about the vertical, so the tilt is off the floor's axes.
+#[test]
+fn a_cube_tilted_under_the_feature_angle_rests_on_its_face() {
+    for (degrees, kind, vertices) in [
+        (0.95f64, PolygonKind::Polygon, 4),
+        (1.05, PolygonKind::Segment, 2),
+    ] {
+        let tilt = degrees.to_radians();
+        let half = SIDE / 2.0;
+        // The lowest edge on the floor.
+        let centre = [0.0, 0.0, half * (tilt.cos() + tilt.sin())];
+        let turn = rotation([0.0, 0.0, 1.0], 30.0) * rotation([1.0, 0.0, 0.0], degrees);
+        let contacts = contacts_with_floor(cube("cube", centre).rotation(turn));
+        assert_eq!(contacts.len(), 1, "{degrees}°");
+        let s = &contacts[0].support;
+        assert_eq!(s.kind(), kind, "{degrees}°");
+        assert_eq!(s.vertices().len(), vertices, "{degrees}°");
+    }
+}
+
 #[test]
 fn a_cube_on_a_corner_gives_a_point() {
     // Turn the body diagonal (1, 1, 1) onto the vertical: one corner points straight down.
