@@ -13,6 +13,10 @@
 //! ([`crate::segment`]), and a point support as the vertex model's 3-row block (normal and
 //! friction at the point) — the same constraints without the rows their sets bound to zero. On
 //! a pile of 1000 cubes half the contacts are points and a quarter segments.
+//!
+//! The polygon is the support polygon's bearing part: where the depth is within
+//! [`BEARING_DEPTH`] of the deepest point ([`bearing_contact`]), so a face tilted within the
+//! feature angle and standing off at one side is not held at its tilt.
 
 use nalgebra::{Point2, Vector3};
 use tatami_geometry::{ConvexPolygon, PolygonKind, Sector};

@@ -8,7 +8,8 @@
 //!   centre bounded by the total normal impulse. `k + 3` rows.
 //! - [`ContactModel::Face`] — the paper's method: one 6-row constraint at the support polygon's
 //!   centroid; twist bounded by torsional friction, tilt by keeping the centre of pressure (ZMP)
-//!   in the polygon. 6 rows per face, whatever its vertex count; a segment's block has 5 (the
+//!   in the polygon — the part of it that bears ([`bearing_part`]) when a face tilted within
+//!   the feature angle stands off at one side. 6 rows per face, whatever its vertex count; a segment's block has 5 (the
 //!   tilt across it: [`segment`]) and a point's 3 (no torque).
 //!
 //! Rows are written into a [`tatami_lcp::Problem`] whose blocks carry a [`ContactProjection`],
