@@ -203,9 +203,48 @@ impl Projection for FaceProjection {
     }
 }
 
-/// Appends one 6-row block at the centroid of the support polygon's bearing part (within
-/// [`BEARING_DEPTH`] of its deepest point: [`bearing_part`]; all of it when pressed in deeper
-/// than the slop) and each row's penetration bias to `biases` —
+/// `contact` on the part of its support polygon the face model builds its block on: within
+/// [`BEARING_DEPTH`] of its deepest point ([`bearing_part`]), unless pressed in deeper than the
+/// slop, when the overlap is being pushed out over all of it. `None` when that is all of it;
+/// a contact it returns is its own bearing contact.
+///
+/// ```
+/// use nalgebra::{Point2, Point3, Vector3};
+/// use tatami_contact::{Contact, ContactFrame, ContactSettings, Material};
+/// use tatami_contact::face::bearing_contact;
+/// use tatami_geometry::ConvexPolygon;
+/// use tatami_lcp::BodyId;
+///
+/// // A 2 m square face on its edge x = −1, pressed in 1 mm there, its edge x = 1 2 cm up.
+/// let square = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(x, y)| Point2::new(x, y));
+/// let tilted = Contact {
+///     body_a: BodyId(0),
+///     body_b: BodyId(1),
+///     centre_a: Point3::new(0.0, 0.0, 1.0),
+///     centre_b: Point3::new(0.0, 0.0, -1.0),
+///     frame: ContactFrame::from_normal(Point3::origin(), Vector3::z())?,
+///     support: ConvexPolygon::from_points(&square)?,
+///     depths: vec![0.001, -0.02, -0.02, 0.001],
+///     material: Material::new(0.5, 0.5, 0.0)?,
+/// };
+/// let settings = ContactSettings::default();
+/// let bearing = bearing_contact(&tilted, &settings).expect("the far edge stands off");
+/// assert!(bearing.support.area() < 0.2);
+/// assert!(bearing_contact(&bearing, &settings).is_none());
+/// // Pressed in 5 mm, beyond the 2 mm slop: all of it.
+/// let pressed = Contact { depths: vec![0.005, -0.02, -0.02, 0.005], ..tilted };
+/// assert!(bearing_contact(&pressed, &settings).is_none());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn bearing_contact(contact: &Contact, settings: &ContactSettings) -> Option<Contact> {
+    if contact.depth() > settings.slop {
+        return None;
+    }
+    bearing_part(contact, BEARING_DEPTH)
+}
+
+/// Appends one 6-row block at the centroid of the support polygon's bearing part
+/// ([`bearing_contact`]) and each row's penetration bias to `biases` —
 /// for a segment the 5-row block of [`crate::segment`] (but with the parallel-torque variant,
 /// which reads both tilts), for a point support the vertex model's 3-row block (see the module
 /// doc). The contact must be validated.
@@ -216,11 +255,7 @@ pub(crate) fn build(
     problem: &mut Problem<ContactProjection>,
     biases: &mut Vec<f64>,
 ) {
-    // Pressed in beyond the slop, the overlap is being pushed out over all of it.
-    let bearing = (contact.depth() <= settings.slop)
-        .then(|| bearing_part(contact, BEARING_DEPTH))
-        .flatten();
-    match bearing {
+    match bearing_contact(contact, settings) {
         Some(bearing) => build_bearing(&bearing, dt, settings, problem, biases),
         None => build_bearing(contact, dt, settings, problem, biases),
     }
