@@ -15,7 +15,6 @@
 //! slivers along their deepest edges, still overlapped by 0.53 m after 8 s; on whole faces
 //! the last overlap falls below 5 cm by 6.6 s).
 
-use nalgebra::Point2;
 use tatami_geometry::ConvexPolygon;
 
 use crate::Contact;
@@ -30,41 +29,9 @@ pub const BEARING_DEPTH: f64 = 5e-4;
 
 /// `contact` on the part of its support polygon whose depth is within `within` (m) of its
 /// deepest vertex's, the depths of the new vertices interpolated along the cut edges; `None`
-/// when every vertex is within it (the contact bears on all of its polygon).
-///
-/// ```
-/// use nalgebra::{Point2, Point3, Vector3};
-/// use tatami_contact::{Contact, ContactFrame, Material, bearing_part};
-/// use tatami_geometry::{ConvexPolygon, PolygonKind};
-/// use tatami_lcp::BodyId;
-///
-/// // A 2 m square resting on its edge x = −1, its edge x = 1 lifted 2 cm.
-/// let square = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(x, y)| Point2::new(x, y));
-/// let contact = Contact {
-///     body_a: BodyId(0),
-///     body_b: BodyId(1),
-///     centre_a: Point3::new(0.0, 0.0, 1.0),
-///     centre_b: Point3::new(0.0, 0.0, -1.0),
-///     frame: ContactFrame::from_normal(Point3::origin(), Vector3::z())?,
-///     support: ConvexPolygon::from_points(&square)?,
-///     depths: vec![0.0, -0.02, -0.02, 0.0],
-///     material: Material::new(0.5, 0.5, 0.0)?,
-/// };
-/// // Within 2 mm of the touching edge: the strip −1 ≤ x ≤ −0.8.
-/// let bearing = bearing_part(&contact, 0.002).expect("the far edge stands off");
-/// assert_eq!(bearing.support.kind(), PolygonKind::Polygon);
-/// assert!((bearing.support.area() - 0.4).abs() < 1e-12);
-/// assert!(bearing.depths.iter().all(|&d| d >= -0.002 - 1e-15));
-/// // Pressed in by 3 mm at x = −1, 1.5 mm at x = 1: all of it within 2 mm of the deepest.
-/// let pressed = Contact { depths: vec![0.003, 0.0015, 0.0015, 0.003], ..contact.clone() };
-/// assert!(bearing_part(&pressed, 0.002).is_none());
-/// // Still 5 mm above the floor at x = −1, 25 mm at x = 1: the nearest strip.
-/// let above = Contact { depths: vec![-0.005, -0.025, -0.025, -0.005], ..contact };
-/// let nearest = bearing_part(&above, 0.002).expect("the far edge is farther");
-/// assert!((nearest.support.area() - 0.4).abs() < 1e-12);
-/// # Ok::<(), Box<dyn std::error::Error>>(())
-/// ```
-pub fn bearing_part(contact: &Contact, within: f64) -> Option<Contact> {
+/// when every vertex is within it (the contact bears on all of its polygon). The contact's
+/// depths must have been checked ([`Contact::validate_depths`]).
+pub(crate) fn bearing_part(contact: &Contact, within: f64) -> Option<Contact> {
     let cut = contact.depth() - within;
     let depths = &contact.depths;
     if depths.iter().all(|&d| d >= cut) {
@@ -72,25 +39,26 @@ pub fn bearing_part(contact: &Contact, within: f64) -> Option<Contact> {
     }
     let vertices = contact.support.vertices();
     let n = vertices.len();
-    let mut points: Vec<(Point2<f64>, f64)> = Vec::with_capacity(n + 2);
+    let (mut points, mut point_depths) = (Vec::with_capacity(n + 2), Vec::with_capacity(n + 2));
     for i in 0..n {
         let (p, q) = (vertices[i], vertices[(i + 1) % n]);
         let (dp, dq) = (depths[i], depths[(i + 1) % n]);
         if dp >= cut {
-            points.push((p, dp));
+            points.push(p);
+            point_depths.push(dp);
         }
         if (dp >= cut) != (dq >= cut) {
             let t = (dp - cut) / (dp - dq);
-            points.push((p + (q - p) * t, cut));
+            points.push(p + (q - p) * t);
+            point_depths.push(cut);
         }
     }
-    let plane: Vec<Point2<f64>> = points.iter().map(|(p, _)| *p).collect();
-    let support = ConvexPolygon::from_points(&plane).ok()?;
+    let support = ConvexPolygon::from_points(&points).ok()?;
     // The hull keeps some of the points as they are: each takes its own depth.
     let depths = support
         .vertices()
         .iter()
-        .map(|v| points.iter().find(|(p, _)| p == v).map(|(_, d)| *d))
+        .map(|v| points.iter().position(|p| p == v).map(|k| point_depths[k]))
         .collect::<Option<Vec<f64>>>()?;
     Some(Contact {
         support,
@@ -103,8 +71,9 @@ pub fn bearing_part(contact: &Contact, within: f64) -> Option<Contact> {
 mod tests {
     use super::*;
     use crate::{ContactFrame, Material};
-    use nalgebra::{Point3, Vector3};
+    use nalgebra::{Point2, Point3, Vector3};
     use proptest::prelude::*;
+    use tatami_geometry::PolygonKind;
     use tatami_lcp::BodyId;
 
     fn contact(vertices: &[Point2<f64>], depths: Vec<f64>) -> Contact {
@@ -118,6 +87,26 @@ mod tests {
             depths,
             material: Material::new(0.5, 0.5, 0.0).unwrap(),
         }
+    }
+
+    /// A 2 m square resting on its edge x = −1, its edge x = 1 lifted 2 cm: within 2 mm of the
+    /// touching edge is the strip −1 ≤ x ≤ −0.8 (area 0.4); pressed in by 3 mm at x = −1 and
+    /// 1.5 mm at x = 1, all of it is within 2 mm of the deepest; still 5 mm above the floor at
+    /// x = −1 and 25 mm at x = 1, the nearest strip, of the same area.
+    #[test]
+    fn a_square_on_its_edge_bears_on_the_strip_along_it() {
+        let square =
+            [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(x, y)| Point2::new(x, y));
+        let on_edge = contact(&square, vec![0.0, -0.02, -0.02, 0.0]);
+        let bearing = bearing_part(&on_edge, 0.002).expect("the far edge stands off");
+        assert_eq!(bearing.support.kind(), PolygonKind::Polygon);
+        assert!((bearing.support.area() - 0.4).abs() < 1e-12);
+        assert!(bearing.depths.iter().all(|&d| d >= -0.002 - 1e-15));
+        let pressed = contact(&square, vec![0.003, 0.0015, 0.0015, 0.003]);
+        assert!(bearing_part(&pressed, 0.002).is_none());
+        let above = contact(&square, vec![-0.005, -0.025, -0.025, -0.005]);
+        let nearest = bearing_part(&above, 0.002).expect("the far edge is farther");
+        assert!((nearest.support.area() - 0.4).abs() < 1e-12);
     }
 
     /// Against brute force: a regular polygon turned anywhere, its depths an affine function

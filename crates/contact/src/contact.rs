@@ -40,6 +40,21 @@ impl Contact {
             .fold(f64::NEG_INFINITY, f64::max)
     }
 
+    /// Checks that there is one finite depth per support vertex.
+    pub(crate) fn validate_depths(&self) -> Result<(), ContactError> {
+        let vertices = self.support.vertices().len();
+        if self.depths.len() != vertices {
+            return Err(ContactError::DepthCount {
+                depths: self.depths.len(),
+                vertices,
+            });
+        }
+        if !self.depths.iter().all(|d| d.is_finite()) {
+            return Err(ContactError::NonFinite { what: "depth" });
+        }
+        Ok(())
+    }
+
     /// Checks that the contact is well formed for a problem with `bodies` bodies.
     pub fn validate(&self, bodies: usize) -> Result<(), ContactError> {
         for body in [self.body_a, self.body_b] {
@@ -53,16 +68,7 @@ impl Contact {
         // The fields are public: a material built by hand gets the checks of `Material::new`.
         let m = &self.material;
         Material::new(m.static_friction, m.kinetic_friction, m.restitution)?;
-        let vertices = self.support.vertices().len();
-        if self.depths.len() != vertices {
-            return Err(ContactError::DepthCount {
-                depths: self.depths.len(),
-                vertices,
-            });
-        }
-        if !self.depths.iter().all(|d| d.is_finite()) {
-            return Err(ContactError::NonFinite { what: "depth" });
-        }
+        self.validate_depths()?;
         let centres = self.centre_a.iter().chain(self.centre_b.iter());
         if !centres.copied().all(f64::is_finite) {
             return Err(ContactError::NonFinite { what: "centre" });

@@ -22,13 +22,14 @@ use nalgebra::{Point2, Vector3};
 use tatami_geometry::{ConvexPolygon, PolygonKind, Sector};
 use tatami_lcp::{Block, LinearSet, Problem, Projection, Row, RowBound};
 
+use crate::bearing::bearing_part;
 use crate::jacobian::{angular_jacobian, point_jacobian, point_motion, twist_rate};
 use crate::segment::SegmentProjection;
 use crate::target::normal_target;
 use crate::vertex;
 use crate::{
-    BEARING_DEPTH, Contact, ContactProjection, ContactSettings, FrictionCone, TwistRadius,
-    bearing_part,
+    BEARING_DEPTH, Contact, ContactError, ContactProjection, ContactSettings, FrictionCone,
+    TwistRadius,
 };
 
 /// Rows of a face constraint.
@@ -204,9 +205,10 @@ impl Projection for FaceProjection {
 }
 
 /// `contact` on the part of its support polygon the face model builds its block on: within
-/// [`BEARING_DEPTH`] of its deepest point ([`bearing_part`]), unless pressed in deeper than the
-/// slop, when the overlap is being pushed out over all of it. `None` when that is all of it;
-/// a contact it returns is its own bearing contact.
+/// [`BEARING_DEPTH`] of its deepest point (the polygon cut by one line, the depths being affine
+/// across it), unless pressed in deeper than the slop, when the overlap is being pushed out
+/// over all of it. `None` when that is all of it; a contact it returns is its own bearing
+/// contact. Errors when the depths are not one finite value per support vertex.
 ///
 /// ```
 /// use nalgebra::{Point2, Point3, Vector3};
@@ -228,15 +230,27 @@ impl Projection for FaceProjection {
 ///     material: Material::new(0.5, 0.5, 0.0)?,
 /// };
 /// let settings = ContactSettings::default();
-/// let bearing = bearing_contact(&tilted, &settings).expect("the far edge stands off");
+/// let bearing = bearing_contact(&tilted, &settings)?.expect("the far edge stands off");
 /// assert!(bearing.support.area() < 0.2);
-/// assert!(bearing_contact(&bearing, &settings).is_none());
+/// assert!(bearing_contact(&bearing, &settings)?.is_none());
 /// // Pressed in 5 mm, beyond the 2 mm slop: all of it.
-/// let pressed = Contact { depths: vec![0.005, -0.02, -0.02, 0.005], ..tilted };
-/// assert!(bearing_contact(&pressed, &settings).is_none());
+/// let pressed = Contact { depths: vec![0.005, -0.02, -0.02, 0.005], ..tilted.clone() };
+/// assert!(bearing_contact(&pressed, &settings)?.is_none());
+/// // A depth short: an error naming the count, not a panic.
+/// let short = Contact { depths: vec![0.001, -0.02], ..tilted };
+/// assert!(bearing_contact(&short, &settings).is_err());
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn bearing_contact(contact: &Contact, settings: &ContactSettings) -> Option<Contact> {
+pub fn bearing_contact(
+    contact: &Contact,
+    settings: &ContactSettings,
+) -> Result<Option<Contact>, ContactError> {
+    contact.validate_depths()?;
+    Ok(bearing_of_checked(contact, settings))
+}
+
+/// [`bearing_contact`] of a contact whose depths are checked.
+fn bearing_of_checked(contact: &Contact, settings: &ContactSettings) -> Option<Contact> {
     if contact.depth() > settings.slop {
         return None;
     }
@@ -255,10 +269,14 @@ pub(crate) fn build(
     problem: &mut Problem<ContactProjection>,
     biases: &mut Vec<f64>,
 ) {
-    match bearing_contact(contact, settings) {
-        Some(bearing) => build_bearing(&bearing, dt, settings, problem, biases),
-        None => build_bearing(contact, dt, settings, problem, biases),
-    }
+    let bearing = bearing_of_checked(contact, settings);
+    build_bearing(
+        bearing.as_ref().unwrap_or(contact),
+        dt,
+        settings,
+        problem,
+        biases,
+    );
 }
 
 /// [`build`] on a contact that bears on all of its support polygon.

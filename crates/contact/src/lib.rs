@@ -8,9 +8,10 @@
 //!   centre bounded by the total normal impulse. `k + 3` rows.
 //! - [`ContactModel::Face`] — the paper's method: one 6-row constraint at the support polygon's
 //!   centroid; twist bounded by torsional friction, tilt by keeping the centre of pressure (ZMP)
-//!   in the polygon — the part of it that bears ([`bearing_part`]) when a face tilted within
-//!   the feature angle stands off at one side. 6 rows per face, whatever its vertex count; a segment's block has 5 (the
-//!   tilt across it: [`segment`]) and a point's 3 (no torque).
+//!   in the polygon — the part of it that bears ([`face::bearing_contact`]) when a face tilted
+//!   within the feature angle stands off at one side. 6 rows per face, whatever its vertex
+//!   count; a segment's block has 5 (the tilt across it: [`segment`]) and a point's 3 (no
+//!   torque).
 //!
 //! Rows are written into a [`tatami_lcp::Problem`] whose blocks carry a [`ContactProjection`],
 //! so one problem holds contacts of any model and any solver of the LCP crate can solve it.
@@ -65,7 +66,7 @@ mod settings;
 mod target;
 pub mod vertex;
 
-pub use bearing::{BEARING_DEPTH, bearing_part};
+pub use bearing::BEARING_DEPTH;
 pub use contact::Contact;
 pub use error::ContactError;
 pub use frame::ContactFrame;
