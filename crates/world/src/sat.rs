@@ -6,8 +6,9 @@
 //!
 //! Edge pairs are tried only where their arcs on the Gauss map cross (Gregorius, "The
 //! Separating Axis Test between Convex Polyhedra", GDC 2013): only those pairs build a face of
-//! the Minkowski difference. Every separation is measured with the support functions of both
-//! polytopes, so an edge pair let through by round-off only costs time.
+//! the Minkowski difference, whose separation is then that of the two edges themselves, without
+//! the support functions. An edge pair let through by round-off is within round-off of building
+//! one, and so is its separation.
 
 use nalgebra::{UnitQuaternion, Vector3};
 
@@ -86,20 +87,6 @@ impl Polytope {
             .map(|v| v.dot(direction))
             .fold(f64::NEG_INFINITY, f64::max)
     }
-}
-
-/// The separation of `b` from `a` along the unit `axis` (in `a`'s frame): how far `b` lies beyond
-/// `a`'s extent along it; negative where they overlap. `b` is placed by `rotation` and
-/// `translation` in `a`'s frame.
-fn separation_along(
-    a: &Polytope,
-    b: &Polytope,
-    rotation: &UnitQuaternion<f64>,
-    translation: &Vector3<f64>,
-    axis: &Vector3<f64>,
-) -> f64 {
-    let in_b = rotation.inverse_transform_vector(&-axis);
-    -b.support(&in_b) + axis.dot(translation) - a.support(axis)
 }
 
 /// The axis (unit, in `a`'s frame, pointing out of `a`) along which `b` — placed by `rotation`
@@ -188,7 +175,9 @@ pub(crate) fn separating_axis(
             if axis.dot(&(r - a.centre)) < 0.0 {
                 axis = -axis;
             }
-            let separation = separation_along(a, b, rotation, translation, &axis);
+            // The pair builds a face of the Minkowski difference: its edges are where the two
+            // polytopes' extents along the axis end, so the separation is that of the edges.
+            let separation = axis.dot(&(p - r));
             if !consider(separation, axis) {
                 return Err(None);
             }
