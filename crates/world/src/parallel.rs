@@ -31,39 +31,52 @@ pub(crate) fn for_each<T, S>(
 ) where
     T: Send,
 {
-    for_each_beside(items, scratch, work, || ());
+    for_each_beside(
+        items,
+        scratch,
+        |scratch, item| {
+            work(scratch, item);
+            false
+        },
+        || (),
+    );
 }
 
 /// [`for_each`], with the calling thread running `beside` first while the pool's helpers start
-/// on the items; it then joins them. Returns what `beside` returned.
+/// on the items; it then joins them. Returns what `beside` returned and on how many items
+/// `work` returned `true` (counted by each thread on its own and added once at its end: a
+/// counter shared item by item would bounce its cache line between the cores).
 pub(crate) fn for_each_beside<T, S, R>(
     items: &mut [T],
     scratch: fn() -> S,
-    work: impl Fn(&mut S, &mut T) + Sync,
+    work: impl Fn(&mut S, &mut T) -> bool + Sync,
     beside: impl FnOnce() -> R,
-) -> R
+) -> (R, usize)
 where
     T: Send,
 {
     let claims: Vec<Mutex<&mut [T]>> = items.chunks_mut(ITEMS_PER_CLAIM).map(Mutex::new).collect();
     let next = AtomicUsize::new(0);
+    let counted = AtomicUsize::new(0);
     let take_part = || {
-        let mut own = scratch();
+        let (mut own, mut count) = (scratch(), 0);
         while let Some(claim) = claims.get(next.fetch_add(1, Ordering::Relaxed)) {
             let mut piece = claim.lock().unwrap_or_else(PoisonError::into_inner);
             for item in piece.iter_mut() {
-                work(&mut own, item);
+                count += usize::from(work(&mut own, item));
             }
         }
+        counted.fetch_add(count, Ordering::Relaxed);
     };
-    rayon::in_place_scope(|scope| {
+    let result = rayon::in_place_scope(|scope| {
         for _ in 1..rayon::current_num_threads() {
             scope.spawn(|_| take_part());
         }
         let result = beside();
         take_part();
         result
-    })
+    });
+    (result, counted.into_inner())
 }
 
 /// Runs `beside` on the calling thread while a helper of the pool runs `job`; a `job` no helper
@@ -129,15 +142,19 @@ mod tests {
     fn beside_runs_on_the_calling_thread_while_every_item_is_done_once() {
         let caller = std::thread::current().id();
         for len in [0, 1, 9, 1001] {
-            let mut items = vec![0u32; len];
-            let ran_on = for_each_beside(
+            let mut items: Vec<(usize, u32)> = (0..len).map(|i| (i, 0)).collect();
+            let (ran_on, odd) = for_each_beside(
                 &mut items,
                 || (),
-                |(), visits| *visits += 1,
+                |(), (index, visits)| {
+                    *visits += 1;
+                    *index % 2 == 1
+                },
                 || std::thread::current().id(),
             );
             assert_eq!(ran_on, caller, "{len} items");
-            assert!(items.iter().all(|&v| v == 1), "{len} items");
+            assert_eq!(odd, len / 2, "items counted, {len} items");
+            assert!(items.iter().all(|&(_, v)| v == 1), "{len} items");
         }
     }
 
