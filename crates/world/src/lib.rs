@@ -24,6 +24,7 @@ mod box_feature;
 mod box_sat;
 mod broad_phase;
 mod builder;
+mod carry;
 mod collision;
 mod contact_set;
 mod control;

@@ -1,0 +1,175 @@
+//! A contact carried with its bodies. While two bodies slide and turn against each other by
+//! less than [`CARRY_SLIP`] and [`CARRY_TURN`] since their contact was computed, the contact
+//! moves with them and only its depths are measured again, instead of being found afresh:
+//! late in a settling pile most bodies creep by tens of micrometres a step, past the reuse
+//! tolerance of [`crate::contact_set`], while their contacts barely change (rapier keeps its
+//! contact points the same way, up to 1 mm of slip and 1° of turn).
+//!
+//! The support polygon moves with body B: its vertices stay the points of B they were, and
+//! each depth changes by how far the point of A that was there has moved along the normal,
+//! away (shallower) or in (deeper). The slip and turn are summed over the steps the contact is
+//! carried, so it is never further than the bounds from the contact computed at its poses.
+
+use nalgebra::Vector3;
+use tatami_contact::Contact;
+
+use crate::contact_set::Pose;
+
+/// Most slip (m) of the bodies' surfaces against each other across the contact since it was
+/// computed: a twentieth of the default 2 mm slop.
+pub(crate) const CARRY_SLIP: f64 = 1e-4;
+
+/// Most turn (rad) of the bodies against each other since the contact was computed: 0.1°, a
+/// tenth of the default feature angle, which decides whether a tilted face is kept whole.
+pub(crate) const CARRY_TURN: f64 = 0.1 * std::f64::consts::PI / 180.0;
+
+/// How far a carried contact has moved from the one computed: summed slip and turn.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct Drift {
+    slip: f64,
+    turn: f64,
+}
+
+/// Moves `contact`, placed for its bodies at `was`, with them to `now`, adding to `drift`;
+/// `false`, leaving both as they were, when the drift would pass [`CARRY_SLIP`] or
+/// [`CARRY_TURN`], or a depth would change sign (the polygon's shape may then change).
+pub(crate) fn carry(
+    contact: &mut Contact,
+    drift: &mut Drift,
+    was: &[Pose; 2],
+    now: &[Pose; 2],
+) -> bool {
+    let ([(ca, qa), (cb, qb)], [(na, ra), (nb, rb)]) = (was, now);
+    let turn = (qa.inverse() * qb).angle_to(&(ra.inverse() * rb));
+    if drift.turn + turn > CARRY_TURN {
+        return false;
+    }
+    let (move_a, move_b) = (ra * qa.inverse(), rb * qb.inverse());
+    let frame = contact.frame;
+    let normal = move_b * frame.normal;
+    let mut slip: f64 = 0.0;
+    let mut depths = [0.0; 64];
+    let vertices = contact.support.vertices();
+    if vertices.len() > depths.len() {
+        return false;
+    }
+    for ((v, &depth), new) in vertices.iter().zip(&contact.depths).zip(&mut depths) {
+        let p = frame.to_world(v);
+        let of_a = move_a * (p - ca) + na.coords;
+        let of_b = move_b * (p - cb) + nb.coords;
+        let apart = of_a - of_b;
+        let along = apart.dot(&normal);
+        slip = slip.max((apart - normal * along).norm());
+        *new = depth - along;
+        if (*new > 0.0) != (depth > 0.0) {
+            return false;
+        }
+    }
+    if drift.slip + slip > CARRY_SLIP {
+        return false;
+    }
+    drift.slip += slip;
+    drift.turn += turn;
+    let rotate = |v: &Vector3<f64>| move_b * v;
+    contact.frame.origin = nb + move_b * (frame.origin - cb);
+    contact.frame.tangent1 = rotate(&frame.tangent1);
+    contact.frame.tangent2 = rotate(&frame.tangent2);
+    contact.frame.normal = normal;
+    let n = contact.depths.len();
+    contact.depths.copy_from_slice(&depths[..n]);
+    contact.centre_a = *na;
+    contact.centre_b = *nb;
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{Point2, Point3, UnitQuaternion};
+    use tatami_contact::{ContactFrame, Material};
+    use tatami_geometry::ConvexPolygon;
+    use tatami_lcp::BodyId;
+
+    /// A 1 m face of A (centre 0.5 m up) on B (centre 0.5 m down), pressed in 1 mm at two
+    /// corners and 0.5 mm at the others, its normal turned off the axes.
+    fn resting() -> (Contact, [Pose; 2]) {
+        let turn = UnitQuaternion::from_euler_angles(0.3, -0.2, 0.7);
+        let normal = turn * Vector3::z();
+        let was = [
+            (Point3::from(turn * Vector3::new(0.0, 0.0, 0.5)), turn),
+            (Point3::from(turn * Vector3::new(0.0, 0.0, -0.5)), turn),
+        ];
+        let square = [(-0.5, -0.5), (0.5, -0.5), (0.5, 0.5), (-0.5, 0.5)];
+        let contact = Contact {
+            body_a: BodyId(0),
+            body_b: BodyId(1),
+            centre_a: was[0].0,
+            centre_b: was[1].0,
+            frame: ContactFrame::from_normal(Point3::origin(), normal).unwrap(),
+            support: ConvexPolygon::from_points(&square.map(|(x, y)| Point2::new(x, y))).unwrap(),
+            depths: vec![1e-3, 1e-3, 5e-4, 5e-4],
+            material: Material::new(0.5, 0.5, 0.0).unwrap(),
+        };
+        (contact, was)
+    }
+
+    /// Both bodies moved and turned together: the same depths at the same points of B, the
+    /// frame moved with them.
+    #[test]
+    fn a_contact_moved_with_both_bodies_keeps_its_depths() {
+        let (mut contact, was) = resting();
+        let (shift, spin) = (
+            Vector3::new(0.3, -1.2, 0.05),
+            UnitQuaternion::from_euler_angles(0.4, 0.1, -0.9),
+        );
+        let moved = |(c, q): Pose| (Point3::from(spin * c.coords + shift), spin * q);
+        let now = [moved(was[0]), moved(was[1])];
+        let before = contact.clone();
+        assert!(carry(&mut contact, &mut Drift::default(), &was, &now));
+        for (d, e) in contact.depths.iter().zip(&before.depths) {
+            assert!((d - e).abs() < 1e-12, "{d} against {e}");
+        }
+        let point = |c: &Contact, v: &Point2<f64>| c.frame.to_world(v);
+        for v in before.support.vertices() {
+            let expected = spin * point(&before, v).coords + shift;
+            assert!((point(&contact, v).coords - expected).norm() < 1e-12);
+        }
+        assert!((contact.frame.normal - spin * before.frame.normal).norm() < 1e-12);
+        assert_eq!(contact.centre_a, now[0].0);
+    }
+
+    /// A lifted along the normal by 0.3 mm: every depth 0.3 mm less; by 0.7 mm the 0.5 mm
+    /// corners would open, so the contact is left to be found afresh; slid 0.2 mm across it,
+    /// past the slip bound, likewise; tilted by 0.2°, past the turn bound, likewise.
+    #[test]
+    fn a_lift_changes_the_depths_and_a_slide_or_a_turn_past_the_bounds_is_refused() {
+        let (contact, was) = resting();
+        let n = contact.frame.normal;
+        let t = contact.frame.tangent1;
+        let with_a = |c: Point3<f64>, q: UnitQuaternion<f64>| [(c, q), was[1]];
+        let mut lifted = contact.clone();
+        let now = with_a(was[0].0 + n * 3e-4, was[0].1);
+        assert!(carry(&mut lifted, &mut Drift::default(), &was, &now));
+        for (d, e) in lifted.depths.iter().zip(&contact.depths) {
+            assert!((d - (e - 3e-4)).abs() < 1e-12, "{d} against {e} − 0.3 mm");
+        }
+        let tilt =
+            UnitQuaternion::from_axis_angle(&nalgebra::Unit::new_normalize(t), 0.2f64.to_radians());
+        for now in [
+            with_a(was[0].0 + n * 7e-4, was[0].1),
+            with_a(was[0].0 + t * 2e-4, was[0].1),
+            with_a(was[0].0, tilt * was[0].1),
+        ] {
+            let (mut moved, mut drift) = (contact.clone(), Drift::default());
+            assert!(!carry(&mut moved, &mut drift, &was, &now));
+            assert_eq!((moved, drift), (contact.clone(), Drift::default()));
+        }
+        // Slid 0.06 mm twice: the second passes the bound on the sum.
+        let mut drift = Drift::default();
+        let mut slid = contact.clone();
+        let first = with_a(was[0].0 + t * 6e-5, was[0].1);
+        assert!(carry(&mut slid, &mut drift, &was, &first));
+        let second = with_a(was[0].0 + t * 1.2e-4, was[0].1);
+        assert!(!carry(&mut slid, &mut drift, &first, &second));
+    }
+}
