@@ -32,12 +32,14 @@ pub(crate) struct Drift {
 
 /// Moves `contact`, placed for its bodies at `was`, with them to `now`, adding to `drift`;
 /// `false`, leaving both as they were, when the drift would pass [`CARRY_SLIP`] or
-/// [`CARRY_TURN`], or a depth would change sign (the polygon's shape may then change).
+/// [`CARRY_TURN`], a depth would change sign (the polygon's shape may then change), or the
+/// contact would open wider than `margin` everywhere (collision would find the pair apart).
 pub(crate) fn carry(
     contact: &mut Contact,
     drift: &mut Drift,
     was: &[Pose; 2],
     now: &[Pose; 2],
+    margin: f64,
 ) -> bool {
     let ([(ca, qa), (cb, qb)], [(na, ra), (nb, rb)]) = (was, now);
     let turn = (qa.inverse() * qb).angle_to(&(ra.inverse() * rb));
@@ -65,7 +67,11 @@ pub(crate) fn carry(
             return false;
         }
     }
-    if drift.slip + slip > CARRY_SLIP {
+    let deepest = depths[..vertices.len()]
+        .iter()
+        .copied()
+        .fold(f64::NEG_INFINITY, f64::max);
+    if drift.slip + slip > CARRY_SLIP || deepest < -margin {
         return false;
     }
     drift.slip += slip;
@@ -89,6 +95,9 @@ mod tests {
     use tatami_contact::{ContactFrame, Material};
     use tatami_geometry::ConvexPolygon;
     use tatami_lcp::BodyId;
+
+    /// The margin the tests carry contacts within (m).
+    const MARGIN: f64 = 0.01;
 
     /// A 1 m face of A (centre 0.5 m up) on B (centre 0.5 m down), pressed in 1 mm at two
     /// corners and 0.5 mm at the others, its normal turned off the axes.
@@ -125,7 +134,13 @@ mod tests {
         let moved = |(c, q): Pose| (Point3::from(spin * c.coords + shift), spin * q);
         let now = [moved(was[0]), moved(was[1])];
         let before = contact.clone();
-        assert!(carry(&mut contact, &mut Drift::default(), &was, &now));
+        assert!(carry(
+            &mut contact,
+            &mut Drift::default(),
+            &was,
+            &now,
+            MARGIN
+        ));
         for (d, e) in contact.depths.iter().zip(&before.depths) {
             assert!((d - e).abs() < 1e-12, "{d} against {e}");
         }
@@ -140,7 +155,8 @@ mod tests {
 
     /// A lifted along the normal by 0.3 mm: every depth 0.3 mm less; by 0.7 mm the 0.5 mm
     /// corners would open, so the contact is left to be found afresh; slid 0.2 mm across it,
-    /// past the slip bound, likewise; tilted by 0.2°, past the turn bound, likewise.
+    /// past the slip bound, likewise; tilted by 0.2°, past the turn bound, likewise; lifted
+    /// wider than the margin, likewise.
     #[test]
     fn a_lift_changes_the_depths_and_a_slide_or_a_turn_past_the_bounds_is_refused() {
         let (contact, was) = resting();
@@ -149,7 +165,13 @@ mod tests {
         let with_a = |c: Point3<f64>, q: UnitQuaternion<f64>| [(c, q), was[1]];
         let mut lifted = contact.clone();
         let now = with_a(was[0].0 + n * 3e-4, was[0].1);
-        assert!(carry(&mut lifted, &mut Drift::default(), &was, &now));
+        assert!(carry(
+            &mut lifted,
+            &mut Drift::default(),
+            &was,
+            &now,
+            MARGIN
+        ));
         for (d, e) in lifted.depths.iter().zip(&contact.depths) {
             assert!((d - (e - 3e-4)).abs() < 1e-12, "{d} against {e} − 0.3 mm");
         }
@@ -161,15 +183,36 @@ mod tests {
             with_a(was[0].0, tilt * was[0].1),
         ] {
             let (mut moved, mut drift) = (contact.clone(), Drift::default());
-            assert!(!carry(&mut moved, &mut drift, &was, &now));
+            assert!(!carry(&mut moved, &mut drift, &was, &now, MARGIN));
             assert_eq!((moved, drift), (contact.clone(), Drift::default()));
         }
+        // Standing 1–2 mm off (a speculative contact): lifted by 5 mm it is carried; by 1 cm
+        // it opens wider than the 1 cm margin everywhere and is refused.
+        let off = Contact {
+            depths: vec![-1e-3, -1e-3, -2e-3, -2e-3],
+            ..contact.clone()
+        };
+        let lift = |by: f64| with_a(was[0].0 + n * by, was[0].1);
+        assert!(carry(
+            &mut off.clone(),
+            &mut Drift::default(),
+            &was,
+            &lift(5e-3),
+            MARGIN
+        ));
+        assert!(!carry(
+            &mut off.clone(),
+            &mut Drift::default(),
+            &was,
+            &lift(1e-2),
+            MARGIN
+        ));
         // Slid 0.06 mm twice: the second passes the bound on the sum.
         let mut drift = Drift::default();
         let mut slid = contact.clone();
         let first = with_a(was[0].0 + t * 6e-5, was[0].1);
-        assert!(carry(&mut slid, &mut drift, &was, &first));
+        assert!(carry(&mut slid, &mut drift, &was, &first, MARGIN));
         let second = with_a(was[0].0 + t * 1.2e-4, was[0].1);
-        assert!(!carry(&mut slid, &mut drift, &first, &second));
+        assert!(!carry(&mut slid, &mut drift, &first, &second, MARGIN));
     }
 }

@@ -244,7 +244,10 @@ impl ContactSet {
         // Only contacts whose vertices go unnamed (the face model's) are carried: the named
         // models' rows are warm-started vertex by vertex, and carried contacts let the patch
         // model's leaning stack drift 2.6 mm (0.4 mm recomputed; its bound is 1 mm).
-        let carried = self.computed_with.2 == VertexIds::Unnamed;
+        let (margin, carried) = (
+            self.computed_with.0,
+            self.computed_with.2 == VertexIds::Unnamed,
+        );
         let still = |was: &Pose, now: Placement| {
             (now.pose.0 - was.0).norm() <= REUSE_TOLERANCE
                 && now.pose.1.angle_to(&was.1) * now.size.max(1.0) <= REUSE_TOLERANCE
@@ -265,6 +268,7 @@ impl ContactSet {
                     &mut entry.state.drift,
                     &entry.state.poses,
                     &now,
+                    margin,
                 )
             {
                 entry.state.poses = now;
