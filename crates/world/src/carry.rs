@@ -10,7 +10,6 @@
 //! away (shallower) or in (deeper). The slip and turn are summed over the steps the contact is
 //! carried, so it is never further than the bounds from the contact computed at its poses.
 
-use nalgebra::Vector3;
 use tatami_contact::Contact;
 
 use crate::contact_set::Pose;
@@ -76,10 +75,9 @@ pub(crate) fn carry(
     }
     drift.slip += slip;
     drift.turn += turn;
-    let rotate = |v: &Vector3<f64>| move_b * v;
     contact.frame.origin = nb + move_b * (frame.origin - cb);
-    contact.frame.tangent1 = rotate(&frame.tangent1);
-    contact.frame.tangent2 = rotate(&frame.tangent2);
+    contact.frame.tangent1 = move_b * frame.tangent1;
+    contact.frame.tangent2 = move_b * frame.tangent2;
     contact.frame.normal = normal;
     let n = contact.depths.len();
     contact.depths.copy_from_slice(&depths[..n]);
@@ -91,7 +89,7 @@ pub(crate) fn carry(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use nalgebra::{Point2, Point3, UnitQuaternion};
+    use nalgebra::{Point2, Point3, UnitQuaternion, Vector3};
     use tatami_contact::{ContactFrame, Material};
     use tatami_geometry::ConvexPolygon;
     use tatami_lcp::BodyId;
