@@ -249,6 +249,10 @@ fn contact_of(
     let Some(s) = support(&features.a, &features.b, &normal, depths, ids) else {
         return Found::Nothing;
     };
+    let rounded = geometry[i].collider.is_rounded() || geometry[j].collider.is_rounded();
+    if rounded && s.depths.iter().all(|&d| d < -margin) {
+        return Found::Nothing;
+    }
     // The polygon's mean distance from its centroid (`r̄`, exact area moments with a logarithm
     // an edge), which the face model's rows read for every face contact, is found here on
     // every core and kept in the polygon, instead of in the rows' serial stage (a fifth of it

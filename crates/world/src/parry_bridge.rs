@@ -107,6 +107,13 @@ impl Collider {
         (from_glam(aabb.mins) - grow, from_glam(aabb.maxs) + grow)
     }
 
+    /// Whether the contact normal against this shape may come from its rounded core (a
+    /// cylinder's, see [`ROUNDING`]), found within more than the prediction of the true shapes:
+    /// such a pair's contact is kept only when its true depth is within the prediction.
+    pub(crate) fn is_rounded(&self) -> bool {
+        self.rounded.is_some()
+    }
+
     /// The shape whose contact normal stands for this one's: the rounded core of a cylinder
     /// (see [`ROUNDING`]), except against a ball.
     fn normal_shape(&self, against_ball: bool) -> &SharedShape {
@@ -224,11 +231,15 @@ pub(crate) fn contact_normal(
     ) {
         // What parry's manifold for two such shapes takes its normal from, without the
         // features and clipping it would add (a sixth of the manifold's time) and its buffers.
+        // A cylinder's rim stands (√2 − 1) times the rounding out of its rounded core, so two
+        // rims crossing can overlap while the rounded shapes are apart by up to that much of
+        // each: the cores are searched within the prediction plus √2 times their roundings,
+        // and the contact keeps to the prediction on the true shapes ([`Collider::is_rounded`]).
         match contact_support_map_support_map_with_params(
             &pos_ba,
             core_b,
             core_a,
-            prediction + radius_b + radius_a,
+            prediction + std::f64::consts::SQRT_2 * (radius_b + radius_a),
             &mut VoronoiSimplex::new(),
             None,
         ) {
@@ -601,6 +612,81 @@ pub(crate) mod tests {
             compared += 1;
         }
         assert!(compared > 200, "only {compared} overlapping pairs compared");
+    }
+
+    /// A cylinder and a box, a hull or another cylinder, turned at random and moved towards
+    /// each other along a random direction until the true shapes overlap by 0.5–4 mm (parry's
+    /// GJK and EPA on them, bisected): a contact normal is found for every pair, rims crossing
+    /// included, where the rounded cores stand up to `(√2 − 1)` of each rounding further apart
+    /// than the cylinders. Without that allowance 319 of the 600 pairs were lost (148 of the
+    /// 200 cylinder pairs): a cylinder turned at random meets things with its rim first.
+    #[test]
+    fn overlapping_cylinders_are_always_found_touching() {
+        let mut unit = uniform_from(4242);
+        let mut between = |lo: f64, hi: f64| lo + (hi - lo) * unit();
+        let mut found = 0;
+        for case in 0..600 {
+            let cylinder = |between: &mut dyn FnMut(f64, f64) -> f64| Shape::Cylinder {
+                radius: between(0.25, 0.5),
+                half_height: between(0.2, 0.5),
+            };
+            let shape_a = cylinder(&mut between);
+            let shape_b = match case % 3 {
+                0 => Shape::cuboid([between(0.4, 1.0), between(0.4, 1.0), between(0.4, 1.0)]),
+                1 => Shape::Convex {
+                    points: (0..10)
+                        .map(|_| {
+                            Point3::new(between(-0.5, 0.5), between(-0.5, 0.5), between(-0.5, 0.5))
+                        })
+                        .collect(),
+                },
+                _ => cylinder(&mut between),
+            };
+            let (Some(a), Some(b)) = (Collider::new(&shape_a), Collider::new(&shape_b)) else {
+                continue;
+            };
+            let mut turn = || {
+                UnitQuaternion::from_euler_angles(
+                    between(-3.0, 3.0),
+                    between(-3.0, 3.0),
+                    between(-3.0, 3.0),
+                )
+            };
+            let (turn_a, turn_b) = (turn(), turn());
+            let direction =
+                Vector3::new(between(-1.0, 1.0), between(-1.0, 1.0), between(-1.0, 1.0))
+                    .normalize();
+            let overlap = between(5e-4, 4e-3);
+            let pose_a = pose(&Point3::origin(), &turn_a);
+            let pose_at = |s: f64| pose(&Point3::from(direction * s), &turn_b);
+            let signed_distance = |s: f64| {
+                let (sharp_a, sharp_b) = (pose_a * a.local, pose_at(s) * b.local);
+                parry3d_f64::query::contact(&sharp_a, &*a.shape, &sharp_b, &*b.shape, 10.0)
+                    .ok()
+                    .flatten()
+                    .map_or(f64::INFINITY, |c| c.dist)
+            };
+            let (mut near, mut far) = (0.0, 4.0);
+            for _ in 0..60 {
+                let mid = 0.5 * (near + far);
+                if signed_distance(mid) < -overlap {
+                    near = mid;
+                } else {
+                    far = mid;
+                }
+            }
+            let dist = signed_distance(near);
+            if !(-4e-3..=-5e-4).contains(&dist) {
+                continue; // EPA did not settle on this pair
+            }
+            assert!(
+                contact_normal(&a, &pose_a, &b, &pose_at(near), 0.0).is_ok(),
+                "case {case}: overlapping by {} mm, found apart",
+                -dist * 1e3
+            );
+            found += 1;
+        }
+        assert!(found > 400, "only {found} overlapping pairs");
     }
 
     /// A cylinder standing on its cap and one lying on its side, on a box turned off the axes,
