@@ -45,7 +45,11 @@ pub(crate) fn carry(
     if drift.turn + turn > CARRY_TURN {
         return false;
     }
-    let (move_a, move_b) = (ra * qa.inverse(), rb * qb.inverse());
+    // As matrices: each moves every vertex, at half a quaternion's cost a vector.
+    let (move_a, move_b) = (
+        (ra * qa.inverse()).to_rotation_matrix(),
+        (rb * qb.inverse()).to_rotation_matrix(),
+    );
     let frame = contact.frame;
     let normal = move_b * frame.normal;
     let mut slip: f64 = 0.0;
