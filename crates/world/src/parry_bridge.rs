@@ -438,6 +438,31 @@ pub(crate) mod tests {
         }
     }
 
+    /// A cylinder of radius 0.25–0.5 m and half-height 0.2–0.5 m, and by `case` a box, a
+    /// 10-point hull or another such cylinder.
+    fn a_cylinder_and_another(
+        case: usize,
+        between: &mut dyn FnMut(f64, f64) -> f64,
+    ) -> (Shape, Shape) {
+        let cylinder = |between: &mut dyn FnMut(f64, f64) -> f64| Shape::Cylinder {
+            radius: between(0.25, 0.5),
+            half_height: between(0.2, 0.5),
+        };
+        let first = cylinder(between);
+        let other = match case % 3 {
+            0 => Shape::cuboid([between(0.4, 1.0), between(0.4, 1.0), between(0.4, 1.0)]),
+            1 => Shape::Convex {
+                points: (0..10)
+                    .map(|_| {
+                        Point3::new(between(-0.5, 0.5), between(-0.5, 0.5), between(-0.5, 0.5))
+                    })
+                    .collect(),
+            },
+            _ => cylinder(between),
+        };
+        (first, other)
+    }
+
     /// The separating-axis normal of two hulls, or of a hull and a box, against parry's GJK and
     /// EPA (`query::contact`, the path the hulls took before): on overlapping pairs the least
     /// overlap is the same, and it is the overlap along the returned axis; on pairs apart, the
@@ -538,22 +563,7 @@ pub(crate) mod tests {
         let mut between = |lo: f64, hi: f64| lo + (hi - lo) * unit();
         let mut compared = 0;
         for case in 0..1200 {
-            let cylinder = |between: &mut dyn FnMut(f64, f64) -> f64| Shape::Cylinder {
-                radius: between(0.25, 0.5),
-                half_height: between(0.2, 0.5),
-            };
-            let shape_a = cylinder(&mut between);
-            let shape_b = match case % 3 {
-                0 => Shape::cuboid([between(0.4, 1.0), between(0.4, 1.0), between(0.4, 1.0)]),
-                1 => Shape::Convex {
-                    points: (0..10)
-                        .map(|_| {
-                            Point3::new(between(-0.5, 0.5), between(-0.5, 0.5), between(-0.5, 0.5))
-                        })
-                        .collect(),
-                },
-                _ => cylinder(&mut between),
-            };
+            let (shape_a, shape_b) = a_cylinder_and_another(case, &mut between);
             let rounding = [&shape_a, &shape_b]
                 .iter()
                 .filter_map(|s| match s {
@@ -626,22 +636,7 @@ pub(crate) mod tests {
         let mut between = |lo: f64, hi: f64| lo + (hi - lo) * unit();
         let mut found = 0;
         for case in 0..600 {
-            let cylinder = |between: &mut dyn FnMut(f64, f64) -> f64| Shape::Cylinder {
-                radius: between(0.25, 0.5),
-                half_height: between(0.2, 0.5),
-            };
-            let shape_a = cylinder(&mut between);
-            let shape_b = match case % 3 {
-                0 => Shape::cuboid([between(0.4, 1.0), between(0.4, 1.0), between(0.4, 1.0)]),
-                1 => Shape::Convex {
-                    points: (0..10)
-                        .map(|_| {
-                            Point3::new(between(-0.5, 0.5), between(-0.5, 0.5), between(-0.5, 0.5))
-                        })
-                        .collect(),
-                },
-                _ => cylinder(&mut between),
-            };
+            let (shape_a, shape_b) = a_cylinder_and_another(case, &mut between);
             let (Some(a), Some(b)) = (Collider::new(&shape_a), Collider::new(&shape_b)) else {
                 continue;
             };
