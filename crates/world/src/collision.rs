@@ -314,6 +314,12 @@ mod tests {
         builder.build().expect("a valid scene")
     }
 
+    /// Where the world's bodies' collision shapes are.
+    fn poses_of(world: &World) -> Vec<parry3d_f64::math::Pose> {
+        let pose = |b: &Body| parry_bridge::pose(&b.position(), &b.rotation);
+        world.bodies.iter().map(pose).collect()
+    }
+
     /// 48 mixed shapes (boxes, balls, cylinders, hulls) dropped in a heap: after every step's
     /// collision pass, every pair that a fresh test finds touching is in the contact set — the
     /// pairs kept apart without a test (see [`crate::apart`]) hide none — while the set keeps
@@ -330,11 +336,7 @@ mod tests {
             kept_apart += world.contact_set.kept_apart();
             let held: HashSet<(usize, usize)> =
                 world.contacts().map(|c| (c.body_a.0, c.body_b.0)).collect();
-            let poses: Vec<_> = world
-                .bodies
-                .iter()
-                .map(|b| parry_bridge::pose(&b.position(), &b.rotation))
-                .collect();
+            let poses = poses_of(&world);
             let mut features = Features::default();
             for i in 0..world.bodies.len() {
                 for j in i + 1..world.bodies.len() {
@@ -384,11 +386,7 @@ mod tests {
         for step in 0..400 {
             let dt = 1.0 / 60.0;
             world.prepare_step(dt).expect("collision");
-            let poses: Vec<_> = world
-                .bodies
-                .iter()
-                .map(|b| parry_bridge::pose(&b.position(), &b.rotation))
-                .collect();
+            let poses = poses_of(&world);
             let mut features = Features::default();
             for held in world.contacts() {
                 let pair = (held.body_a.0, held.body_b.0);

@@ -438,6 +438,15 @@ pub(crate) mod tests {
         }
     }
 
+    /// A turn by Euler angles drawn in ±3 rad.
+    fn random_turn(between: &mut dyn FnMut(f64, f64) -> f64) -> UnitQuaternion<f64> {
+        UnitQuaternion::from_euler_angles(
+            between(-3.0, 3.0),
+            between(-3.0, 3.0),
+            between(-3.0, 3.0),
+        )
+    }
+
     /// A cylinder of radius 0.25–0.5 m and half-height 0.2–0.5 m, and by `case` a box, a
     /// 10-point hull or another such cylinder.
     fn a_cylinder_and_another(
@@ -577,14 +586,7 @@ pub(crate) mod tests {
             let (Some(a), Some(b)) = (Collider::new(&shape_a), Collider::new(&shape_b)) else {
                 continue;
             };
-            let mut turn = || {
-                UnitQuaternion::from_euler_angles(
-                    between(-3.0, 3.0),
-                    between(-3.0, 3.0),
-                    between(-3.0, 3.0),
-                )
-            };
-            let (turn_a, turn_b) = (turn(), turn());
+            let (turn_a, turn_b) = (random_turn(&mut between), random_turn(&mut between));
             let pose_a = pose(&Point3::origin(), &turn_a);
             let centre_b = Point3::new(between(-1.0, 1.0), between(-1.0, 1.0), between(-1.0, 1.0));
             let pose_b = pose(&centre_b, &turn_b);
@@ -640,14 +642,7 @@ pub(crate) mod tests {
             let (Some(a), Some(b)) = (Collider::new(&shape_a), Collider::new(&shape_b)) else {
                 continue;
             };
-            let mut turn = || {
-                UnitQuaternion::from_euler_angles(
-                    between(-3.0, 3.0),
-                    between(-3.0, 3.0),
-                    between(-3.0, 3.0),
-                )
-            };
-            let (turn_a, turn_b) = (turn(), turn());
+            let (turn_a, turn_b) = (random_turn(&mut between), random_turn(&mut between));
             let direction =
                 Vector3::new(between(-1.0, 1.0), between(-1.0, 1.0), between(-1.0, 1.0))
                     .normalize();
