@@ -11,6 +11,7 @@ use tatami_lcp::BodyId;
 use crate::apart::{Apart, Placement};
 use crate::body::Body;
 use crate::broad_phase::SweepAndPrune;
+use crate::carry::CarryBounds;
 use crate::contact_set::{Computed, ContactSet};
 use crate::parallel;
 use crate::parry_bridge::{self, Collider};
@@ -78,23 +79,37 @@ pub(crate) struct BodyGeometry {
     pub outline: Outline,
 }
 
-/// Brings `set` up to date: one contact per pair closer than `margin`, ordered from the highest
-/// to the lowest along `gravity`, its support vertices named as `ids` asks.
-#[expect(
-    clippy::too_many_arguments,
-    reason = "the bodies, the collision settings, and the stage's buffers and output"
-)]
+/// What collision takes of the world's settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct CollisionSettings {
+    /// Bodies closer than this (m) get a contact.
+    pub margin: f64,
+    /// Faces tilted by less than this (rad) from the contact plane count as flat.
+    pub feature_angle: f64,
+    /// Whether support vertices are named (for the vertex and patch models' warm start).
+    pub ids: VertexIds,
+    /// How far a contact is carried with its bodies before it is found afresh; `None` finds
+    /// every moved pair's afresh (the named models, see [`crate::carry`]).
+    pub carry: Option<CarryBounds>,
+}
+
+/// Brings `set` up to date: one contact per pair closer than the margin, ordered from the
+/// highest to the lowest along `gravity`, its support vertices named as the settings ask.
 pub(crate) fn detect(
     bodies: &[Body],
     geometry: &[BodyGeometry],
-    margin: f64,
-    feature_angle: f64,
-    ids: VertexIds,
+    settings: &CollisionSettings,
     gravity: &Vector3<f64>,
     workspace: &mut CollisionWorkspace,
     set: &mut ContactSet,
 ) {
-    set.begin(margin, feature_angle, ids);
+    let &CollisionSettings {
+        margin,
+        feature_angle,
+        ids,
+        carry,
+    } = settings;
+    set.begin(margin, feature_angle, ids, carry);
     let feature_angle = FeatureAngle::new(feature_angle);
     let CollisionWorkspace {
         boxes,
@@ -377,11 +392,15 @@ mod tests {
     /// a few millimetres, so a fresh contact is no reference there.
     #[test]
     fn carried_contacts_stay_near_the_contacts_found_afresh() {
-        use crate::carry::{CARRY_SLIP, CARRY_TURN};
         // `mixed_shape` cycles box, ball, cylinder, hull: no cylinder.
         let mut world = dropped_heap(12, 40, |k| [0, 1, 3][k % 3]);
         let margin = world.settings.contact_margin;
         let angle = FeatureAngle::new(world.settings.feature_angle);
+        let bounds = CarryBounds::new(
+            world.settings.contact.slop,
+            world.settings.feature_angle,
+            margin,
+        );
         let (mut compared, mut moved) = (0, 0);
         for step in 0..400 {
             let dt = 1.0 / 60.0;
@@ -403,7 +422,7 @@ mod tests {
                 );
                 let Found::Touching((fresh, _, _)) = found else {
                     assert!(
-                        held.depth() <= -margin + CARRY_SLIP,
+                        held.depth() <= -margin + bounds.slip,
                         "step {step}: pair {pair:?} found apart, held at depth {}",
                         held.depth()
                     );
@@ -413,12 +432,12 @@ mod tests {
                 moved += usize::from(fresh != *held);
                 let turn = fresh.frame.normal.angle(&held.frame.normal);
                 assert!(
-                    turn <= 2.0 * CARRY_TURN,
+                    turn <= 2.0 * bounds.turn,
                     "step {step}: pair {pair:?} turned {turn}"
                 );
                 let depth = (fresh.depth() - held.depth()).abs();
                 assert!(
-                    depth <= CARRY_SLIP,
+                    depth <= bounds.slip,
                     "step {step}: pair {pair:?} depth off by {depth}"
                 );
             }

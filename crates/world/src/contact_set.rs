@@ -33,7 +33,7 @@ use tatami_lcp::pgs::Support;
 use tatami_lcp::{Problem, Projection};
 
 use crate::apart::{Apart, Placement};
-use crate::carry::{Drift, carry};
+use crate::carry::{CarryBounds, Drift, carry};
 use crate::load_estimate::LoadEstimate;
 use crate::parallel;
 use crate::support::{FeatureId, FeatureIds, VertexIds};
@@ -191,6 +191,8 @@ pub(crate) struct ContactSet {
     next_impulses: Vec<(RowKey, f64)>,
     /// Collision settings the contacts were computed with; others invalidate them.
     computed_with: (f64, f64, VertexIds),
+    /// How far this pass carries contacts with their bodies ([`carry`]).
+    carry: Option<CarryBounds>,
     /// Scratch: row keys of one contact.
     keys: Vec<RowKey>,
     /// Scratch: the entries' sort keys ([`sort_in_place`]).
@@ -205,7 +207,14 @@ impl ContactSet {
     /// Starts a collision pass with the given contact margin, feature angle and naming of
     /// support vertices: contacts computed with others are dropped (a model that keys its rows
     /// by vertex then finds every contact named), and every pair is marked unmet.
-    pub(crate) fn begin(&mut self, margin: f64, feature_angle: f64, ids: VertexIds) {
+    pub(crate) fn begin(
+        &mut self,
+        margin: f64,
+        feature_angle: f64,
+        ids: VertexIds,
+        carry: Option<CarryBounds>,
+    ) {
+        self.carry = carry;
         if self.computed_with != (margin, feature_angle, ids) {
             self.entries.clear();
             self.held.clear();
@@ -241,13 +250,6 @@ impl ContactSet {
         compute: impl Fn(&mut S, (usize, usize), Vec<f64>) -> Option<Computed> + Sync,
         broad_phase: impl FnOnce(&mut Meeting<'_>),
     ) -> usize {
-        // Only contacts whose vertices go unnamed (the face model's) are carried: the named
-        // models' rows are warm-started vertex by vertex, and carried contacts let the patch
-        // model's leaning stack drift 2.6 mm (0.4 mm recomputed; its bound is 1 mm).
-        let (margin, carried) = (
-            self.computed_with.0,
-            self.computed_with.2 == VertexIds::Unnamed,
-        );
         let still = |was: &Pose, now: Placement| {
             (now.pose.0 - was.0).norm() <= REUSE_TOLERANCE
                 && now.pose.1.angle_to(&was.1) * now.size.max(1.0) <= REUSE_TOLERANCE
@@ -262,13 +264,13 @@ impl ContactSet {
                 return false;
             }
             let now = [now_a.pose, now_b.pose];
-            if carried
+            if let Some(bounds) = &self.carry
                 && carry(
                     &mut entry.contact,
                     &mut entry.state.drift,
                     &entry.state.poses,
                     &now,
-                    margin,
+                    bounds,
                 )
             {
                 entry.state.poses = now;
