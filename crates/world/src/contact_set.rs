@@ -229,7 +229,9 @@ impl ContactSet {
     /// Brings the pairs the set holds up to date, and runs `broad_phase`, which meets the pairs
     /// now overlapping through its [`Meeting`]. A pair keeps its contact if neither body moved
     /// by more than [`REUSE_TOLERANCE`] since it was computed (`placements` says where each
-    /// body is), so a resting stack's pairs are computed once; the others
+    /// body is), so a resting stack's pairs are computed once; a pair whose bodies barely slid
+    /// or turned against each other keeps it carried with them, within the bounds given to
+    /// [`ContactSet::begin`] ([`carry`]); the others
     /// are recomputed in place by `compute` (from a per-thread `scratch`, and given the old
     /// contact's depths buffer to fill), and a pair it returns
     /// `None` for (no longer touching) is dropped by [`ContactSet::end`], as is a pair the broad
