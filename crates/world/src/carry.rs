@@ -13,6 +13,7 @@
 use tatami_contact::Contact;
 
 use crate::contact_set::Pose;
+use crate::support::CAP_VERTICES;
 
 /// Most slip of the bodies' surfaces against each other across a carried contact, as a
 /// fraction of the slop: 0.1 mm at the default 2 mm, far below the depths the solver tells
@@ -27,7 +28,7 @@ const TURN_PER_FEATURE_ANGLE: f64 = 0.1;
 /// How far contacts are carried, from the world's settings: with a slop or a feature angle of
 /// zero only a pair that neither slid nor turned (moved only along the normal, where the
 /// carried contact is exact) is carried.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy)]
 pub(crate) struct CarryBounds {
     /// Most slip (m) since the contact was computed.
     pub slip: f64,
@@ -79,9 +80,11 @@ pub(crate) fn carry(
     let frame = contact.frame;
     let normal = move_b * frame.normal;
     let mut slip: f64 = 0.0;
-    let mut depths = [0.0; 64];
+    // A support polygon has at most a cylinder cap's vertices; one with more is found afresh.
+    let mut depths = [0.0; CAP_VERTICES];
     let vertices = contact.support.vertices();
-    if vertices.len() > depths.len() {
+    let n = vertices.len();
+    if n > depths.len() {
         return false;
     }
     for ((v, &depth), new) in vertices.iter().zip(&contact.depths).zip(&mut depths) {
@@ -96,7 +99,7 @@ pub(crate) fn carry(
             return false;
         }
     }
-    let deepest = depths[..vertices.len()]
+    let deepest = depths[..n]
         .iter()
         .copied()
         .fold(f64::NEG_INFINITY, f64::max);
@@ -109,7 +112,6 @@ pub(crate) fn carry(
     contact.frame.tangent1 = move_b * frame.tangent1;
     contact.frame.tangent2 = move_b * frame.tangent2;
     contact.frame.normal = normal;
-    let n = contact.depths.len();
     contact.depths.copy_from_slice(&depths[..n]);
     contact.centre_a = *na;
     contact.centre_b = *nb;

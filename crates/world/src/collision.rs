@@ -1,7 +1,8 @@
 //! Collision: broad phase, parry's contact normal, support polygons with their feature ids,
 //! written into the persistent [`ContactSet`]. Plain data in, the set out, so it can be run and
-//! timed alone; a pair neither of whose bodies moved keeps its contact (see
-//! [`ContactSet::refresh`]), and a pair found apart along a face normal is not tested again
+//! timed alone; a pair neither of whose bodies moved keeps its contact, and one whose bodies
+//! barely slid or turned against each other has it carried with them (see
+//! [`ContactSet::refresh`], [`crate::carry`]), and a pair found apart along a face normal is not tested again
 //! while its bodies could not have closed the gap ([`crate::apart`]).
 
 use nalgebra::Vector3;
@@ -80,7 +81,7 @@ pub(crate) struct BodyGeometry {
 }
 
 /// What collision takes of the world's settings.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy)]
 pub(crate) struct CollisionSettings {
     /// Bodies closer than this (m) get a contact.
     pub margin: f64,
@@ -264,6 +265,7 @@ fn contact_of(
     let Some(s) = support(&features.a, &features.b, &normal, depths, ids) else {
         return Found::Nothing;
     };
+    // A normal found on a cylinder's rounded core reaches past the margin of the true shapes.
     let rounded = geometry[i].collider.is_rounded() || geometry[j].collider.is_rounded();
     if rounded && s.depths.iter().all(|&d| d < -margin) {
         return Found::Nothing;

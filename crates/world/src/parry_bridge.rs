@@ -1,9 +1,10 @@
 //! Everything that touches parry3d: its glam types are converted here and nowhere else.
 //!
 //! Parry supplies the collision shapes, bounding boxes, solid mass properties of hulls, and the
-//! contact normal of pairs with a curved shape (its GJK and EPA, or its ball manifolds). The support polygon itself is built by
-//! [`crate::support`] from the shapes' full features, because parry's polygonal features hold at
-//! most four vertices (a cylinder cap becomes a square).
+//! contact normal of pairs with a curved shape (its GJK and EPA, or its ball manifolds). The
+//! support polygon itself is built by [`crate::support`] from the shapes' full features,
+//! because parry's polygonal features hold at most four vertices (a cylinder cap becomes a
+//! square).
 
 use nalgebra::{Matrix3, Point3, UnitQuaternion, Vector3};
 use parry3d_f64::math::{Pose, Rotation, Vector};
