@@ -7,27 +7,69 @@
 //! turn while its centre of pressure is in the polygon, so on the whole face it held that tilt
 //! for ever, where the vertex and patch models, whose far rows may only close their gaps, let
 //! the cube fall flat. The face model builds its block on the part of the polygon within
-//! [`BEARING_DEPTH`] of its deepest point instead: the strip along the touching edge, which
+//! [`bearing_depth`] of its deepest point instead: the strip along the touching edge, which
 //! widens as the face closes and is the whole face once it lies flat within that depth. The
 //! depths are affine across the overlap of two planar features, so that part is the polygon
 //! cut by one line. A face pressed in deeper than the slop keeps its whole polygon: the
 //! overlap is being pushed out over all of it (500 cubes spawned inside one another, cut to
 //! slivers along their deepest edges, still overlapped by 0.53 m after 8 s; on whole faces
 //! the last overlap falls below 5 cm by 6.6 s).
+//!
+//! The depth follows the polygon's size ([`bearing_depth`]): the strip must stay narrow beside
+//! the face for the body to tip flat, and under a fixed 0.5 mm a 5 cm cube left tilted by 0.9°
+//! on its edge stood so for ever, its strip (3.2 cm) reaching past its centre. The face model
+//! then keeps the vertices off the strip from passing its level ([`crate::face`]'s landing
+//! blocks): nothing held them, and a small cube tipping flat in one step went through the
+//! floor on its other side.
 
-use nalgebra::Point2;
+use nalgebra::{Point2, Vector2};
 use smallvec::SmallVec;
 use tatami_geometry::ConvexPolygon;
 
 use crate::Contact;
 
-/// How far below the deepest point (m) a point of the support polygon still bears: a quarter
-/// of the default slop. The face model holds the tilt of a face whose depths differ by less
-/// (0.014° across a 2 m face): a 2 m cube left on its edge tilted by 0.3–0.95° came to rest
-/// within 0.017° of flat. Measured with the part taken at every depth: 0.1 mm left it within
-/// 0.002–0.006°, but a sliver of 10 µm along the deepest edge let a dropped cube rock from
-/// edge to edge without end.
+/// How far below the deepest point (m) a point of the support polygon still bears, at most: a
+/// quarter of the default slop. The face model holds the tilt of a face whose depths differ by
+/// less (0.014° across a 2 m face): a 2 m cube left on its edge tilted by 0.3–0.95° came to
+/// rest within 0.017° of flat. Measured with the part taken at every depth: 0.1 mm left it
+/// within 0.002–0.006°, but a sliver of 10 µm along the deepest edge let a dropped cube rock
+/// from edge to edge without end.
 pub const BEARING_DEPTH: f64 = 5e-4;
+
+/// Bearing depth per metre of the support polygon's width ([`bearing_depth`]): a face holds a
+/// tilt of at most about half a thousandth of a radian (0.03°) across its width, whatever its
+/// size. Polygons a metre wide or more keep [`BEARING_DEPTH`]; across smaller ones that depth
+/// is a steeper tilt.
+pub const BEARING_DEPTH_PER_WIDTH: f64 = 5e-4;
+
+/// How far below its deepest point (m) a point of `support` still bears: [`BEARING_DEPTH`], or
+/// [`BEARING_DEPTH_PER_WIDTH`] times the polygon's width if less. The width is twice the
+/// largest distance of a vertex from the vertices' mean (the diagonal of a rectangle, the
+/// length of a segment, 0 for a point), the same however the polygon is turned.
+///
+/// ```
+/// use nalgebra::Point2;
+/// use tatami_contact::{BEARING_DEPTH, bearing_depth};
+/// use tatami_geometry::ConvexPolygon;
+///
+/// let square = |side: f64| {
+///     let h = side / 2.0;
+///     ConvexPolygon::from_points(&[(-h, -h), (h, -h), (h, h), (-h, h)].map(|(x, y)| Point2::new(x, y)))
+/// };
+/// assert_eq!(bearing_depth(&square(2.0)?), BEARING_DEPTH);
+/// // A 5 cm face: 5e-4 of its 7.1 cm diagonal, 35 µm.
+/// assert!((bearing_depth(&square(0.05)?) - 0.05 * 2f64.sqrt() * 5e-4).abs() < 1e-15);
+/// # Ok::<(), tatami_geometry::GeometryError>(())
+/// ```
+pub fn bearing_depth(support: &ConvexPolygon) -> f64 {
+    let vertices = support.vertices();
+    let mean = vertices.iter().map(|v| v.coords).sum::<Vector2<f64>>() / vertices.len() as f64;
+    let farthest = vertices
+        .iter()
+        .map(|v| (v.coords - mean).norm_squared())
+        .fold(0.0, f64::max);
+    BEARING_DEPTH.min(BEARING_DEPTH_PER_WIDTH * 2.0 * farthest.sqrt())
+}
 
 /// `contact` on the part of its support polygon whose depth is within `within` (m) of its
 /// deepest vertex's, the depths of the new vertices interpolated along the cut edges; `None`

@@ -66,7 +66,7 @@ mod settings;
 mod target;
 pub mod vertex;
 
-pub use bearing::BEARING_DEPTH;
+pub use bearing::{BEARING_DEPTH, BEARING_DEPTH_PER_WIDTH, bearing_depth};
 pub use contact::Contact;
 pub use error::ContactError;
 pub use frame::ContactFrame;

@@ -2,6 +2,7 @@
 //! per support-polygon vertex, no torque rows. Each vertex is its own 3-row block
 //! (normal, t1, t2), so a Gauss–Seidel sweep costs O(rows).
 
+use nalgebra::Point2;
 use tatami_lcp::{Block, Problem, Row};
 
 use crate::jacobian::{point_jacobian, point_motion};
@@ -20,38 +21,51 @@ pub(crate) fn build(
     problem: &mut Problem<ContactProjection>,
     biases: &mut Vec<f64>,
 ) {
-    let frame = &contact.frame;
     for (vertex, &depth) in contact.support.vertices().iter().zip(&contact.depths) {
-        let p = frame.to_world(vertex);
-        let (normal_speed, slip) = point_motion(contact, &problem.bodies, &p);
-        let start = problem.rows.len();
-        let target = normal_target(
-            depth,
-            normal_speed,
-            contact.material.restitution,
-            dt,
-            settings,
-        );
-        for (direction, target) in [
-            (frame.normal, target.velocity),
-            (frame.tangent1, 0.0),
-            (frame.tangent2, 0.0),
-        ] {
-            problem.rows.push(Row {
-                jacobian: point_jacobian(contact, &p, &direction),
-                target,
-                impulse: 0.0,
-            });
-        }
-        biases.extend([target.bias, 0.0, 0.0]);
-        problem.blocks.push(Block {
-            body_a: contact.body_a,
-            body_b: contact.body_b,
-            rows: start..start + ROWS_PER_VERTEX,
-            projection: ContactProjection::Point(PointFriction {
-                coefficient: contact.material.friction(slip, settings.slip_threshold),
-                cone: settings.friction_cone,
-            }),
+        build_point(contact, vertex, depth, dt, settings, problem, biases);
+    }
+}
+
+/// Appends the 3-row block of one point of `contact`'s plane, `vertex` in its frame, at `depth`.
+pub(crate) fn build_point(
+    contact: &Contact,
+    vertex: &Point2<f64>,
+    depth: f64,
+    dt: f64,
+    settings: &ContactSettings,
+    problem: &mut Problem<ContactProjection>,
+    biases: &mut Vec<f64>,
+) {
+    let frame = &contact.frame;
+    let p = frame.to_world(vertex);
+    let (normal_speed, slip) = point_motion(contact, &problem.bodies, &p);
+    let start = problem.rows.len();
+    let target = normal_target(
+        depth,
+        normal_speed,
+        contact.material.restitution,
+        dt,
+        settings,
+    );
+    for (direction, target) in [
+        (frame.normal, target.velocity),
+        (frame.tangent1, 0.0),
+        (frame.tangent2, 0.0),
+    ] {
+        problem.rows.push(Row {
+            jacobian: point_jacobian(contact, &p, &direction),
+            target,
+            impulse: 0.0,
         });
     }
+    biases.extend([target.bias, 0.0, 0.0]);
+    problem.blocks.push(Block {
+        body_a: contact.body_a,
+        body_b: contact.body_b,
+        rows: start..start + ROWS_PER_VERTEX,
+        projection: ContactProjection::Point(PointFriction {
+            coefficient: contact.material.friction(slip, settings.slip_threshold),
+            cone: settings.friction_cone,
+        }),
+    });
 }

@@ -428,7 +428,8 @@ impl ContactSet {
     /// other rows from the impulse their key had (rows whose key is new keep zero). A pair with
     /// nothing stored under `model` (new, or last solved under another model) starts instead
     /// with the weight it carries at rest under `weight_per_mass` (gravity × dt) spread evenly
-    /// over its normal rows — see [`crate::load_estimate`].
+    /// over its normal rows — see [`crate::load_estimate`]. The face model's landing blocks,
+    /// after the pair's own, start from zero: they catch a landing, a step's event.
     pub(crate) fn warm_start(
         &mut self,
         model: ContactModel,
@@ -453,14 +454,22 @@ impl ContactSet {
             let rows = rows_of(problem, &entry.state.blocks);
             let stored = match (&entry.state.last, model) {
                 (Solved::Face(impulse), ContactModel::Face) => {
-                    impulse.write_face_rows(&mut problem.rows[rows], &entry.contact.centre_a);
+                    let face = problem.blocks[entry.state.blocks.start].rows.clone();
+                    impulse.write_face_rows(&mut problem.rows[face], &entry.contact.centre_a);
                     continue;
                 }
                 (Solved::Rows(solved_with, stored), _) if *solved_with == model => {
                     &self.impulses[stored.clone()]
                 }
                 _ => {
-                    spread_over_normal_rows(problem, &entry.state.blocks, estimate[index]);
+                    let blocks = match model {
+                        // The face model's own block; the landing blocks after it start unloaded.
+                        ContactModel::Face => {
+                            entry.state.blocks.start..entry.state.blocks.start + 1
+                        }
+                        _ => entry.state.blocks.clone(),
+                    };
+                    spread_over_normal_rows(problem, &blocks, estimate[index]);
                     continue;
                 }
             };
@@ -480,7 +489,8 @@ impl ContactSet {
     }
 
     /// Keeps what `problem`'s solve (under `model`) left of every pair for the next warm start:
-    /// the face model's block as the impulse it applied to body A, other rows' impulses by key.
+    /// the face model's block (the pair's first) as the impulse it applied to body A, other
+    /// rows' impulses by key.
     pub(crate) fn store(&mut self, model: ContactModel, problem: &Problem<ContactProjection>) {
         let next = &mut self.next_impulses;
         next.clear();
@@ -496,7 +506,7 @@ impl ContactSet {
                 }
                 (last, _) if rows.is_empty() => last.clone(),
                 (_, ContactModel::Face) => Solved::Face(ContactImpulse::of_rows(
-                    &problem.rows[rows],
+                    &problem.rows[problem.blocks[state.blocks.start].rows.clone()],
                     entry.contact.centre_a,
                 )),
                 (_, ContactModel::Vertex | ContactModel::Patch) => {
