@@ -783,6 +783,9 @@ pub fn shock_propagation<P: Projection>(
             .blocks
             .get(index)
             .ok_or(LcpError::MalformedBlock { block: index })?;
+        if stays_unloaded_held(problem, block) {
+            continue;
+        }
         let (mut a, mut b) = (
             problem.bodies[block.body_a.0],
             problem.bodies[block.body_b.0],
@@ -807,6 +810,27 @@ pub fn shock_propagation<P: Projection>(
         update_block(problem, workspace, index, start..end, 1.0)?;
     }
     problem.validate_bodies()
+}
+
+/// [`stays_unloaded`] for the shock pass: whether `block` carries nothing and its normal rows
+/// are each at or past their target, so that each step, whatever the responses with the held
+/// body, is clamped back to zero and the update would change nothing. Most blocks of a
+/// position pass, and the face model's landing blocks, are such; the pass skips them before
+/// computing their responses.
+fn stays_unloaded_held<P: Projection>(problem: &Problem<P>, block: &crate::Block<P>) -> bool {
+    let normals = block.projection.leading_normal_rows();
+    let rows = &problem.rows[block.rows.clone()];
+    if normals == 0 || rows.iter().any(|row| row.impulse != 0.0) {
+        return false;
+    }
+    let (a, b) = (
+        &problem.bodies[block.body_a.0],
+        &problem.bodies[block.body_b.0],
+    );
+    // A NaN is not `≥ 0` and goes on to be reported.
+    rows[..normals]
+        .iter()
+        .all(|row| row.jacobian.velocity(a, b) - row.target >= 0.0)
 }
 
 /// Writes the responses of `block`'s rows between bodies `a` and `b` into `out` (one per row),

@@ -122,3 +122,68 @@ fn a_bound_outside_its_block_is_an_error() {
         .unwrap_err();
     assert_eq!(error, LcpError::MalformedBlock { block: 0 });
 }
+
+/// A normal row that says so ([`Projection::leading_normal_rows`]), as a contact's does.
+#[derive(Debug, Clone)]
+struct Normal;
+
+impl tatami_lcp::Projection for Normal {
+    fn project(&mut self, impulses: &mut [f64], _changed: usize) {
+        impulses[0] = impulses[0].max(0.0);
+    }
+
+    fn leading_normal_rows(&self) -> usize {
+        1
+    }
+
+    fn bound(&self, _row: usize) -> Option<RowBound> {
+        Some(RowBound::NonNegative)
+    }
+}
+
+/// Two unit masses stacked on the floor, as in [`falling_stack`] but with contact-like blocks,
+/// the upper one moving at `upper` m/s along z against the lower one at rest.
+fn resting_pair(upper: f64) -> Problem<Normal> {
+    let stack = falling_stack(2);
+    let mut problem = Problem {
+        bodies: stack.bodies,
+        rows: stack.rows,
+        blocks: stack
+            .blocks
+            .into_iter()
+            .map(|b| Block {
+                body_a: b.body_a,
+                body_b: b.body_b,
+                rows: b.rows,
+                projection: Normal,
+            })
+            .collect(),
+    };
+    problem.bodies[1].linear_velocity = Vector3::zeros();
+    problem.bodies[2].linear_velocity = Vector3::new(0.0, 0.0, upper);
+    problem
+}
+
+/// The pass skips a block that carries nothing and whose normal rows are at or past their
+/// targets, before computing its responses: the answer is the one of a pass without that block,
+/// to the bit. A block closing on its target is not skipped: it is loaded, and its upper body
+/// brought to rest on the lower.
+#[test]
+fn an_unloaded_parting_block_is_passed_over_and_a_closing_one_is_not() {
+    let order = bottom_up(2);
+    let mut parting = resting_pair(0.5);
+    pgs::shock_propagation(&mut parting, &mut PgsWorkspace::default(), &order).unwrap();
+    let mut without = resting_pair(0.5);
+    pgs::shock_propagation(&mut without, &mut PgsWorkspace::default(), &order[..1]).unwrap();
+    assert_eq!(parting.bodies, without.bodies);
+    assert_eq!(parting.rows[0].impulse, 0.0);
+
+    let mut closing = resting_pair(-0.5);
+    pgs::shock_propagation(&mut closing, &mut PgsWorkspace::default(), &order).unwrap();
+    assert!(
+        (closing.rows[0].impulse - 0.5).abs() < 1e-12,
+        "{}",
+        closing.rows[0].impulse
+    );
+    assert!(closing.bodies[2].linear_velocity.norm() < 1e-12);
+}
