@@ -248,15 +248,23 @@ pub fn bearing_contact(
     settings: &ContactSettings,
 ) -> Result<Option<Contact>, ContactError> {
     contact.validate_depths()?;
-    Ok(bearing_of_checked(contact, settings))
+    Ok(bearing_of_checked(
+        contact,
+        settings,
+        bearing_depth(&contact.support),
+    ))
 }
 
-/// [`bearing_contact`] of a contact whose depths are checked.
-fn bearing_of_checked(contact: &Contact, settings: &ContactSettings) -> Option<Contact> {
+/// [`bearing_contact`] of a contact whose depths are checked, `within` its bearing depth.
+fn bearing_of_checked(
+    contact: &Contact,
+    settings: &ContactSettings,
+    within: f64,
+) -> Option<Contact> {
     if contact.depth() > settings.slop {
         return None;
     }
-    bearing_part(contact, bearing_depth(&contact.support))
+    bearing_part(contact, within)
 }
 
 /// Appends one 6-row block at the centroid of the support polygon's bearing part
@@ -272,7 +280,8 @@ pub(crate) fn build(
     problem: &mut Problem<ContactProjection>,
     biases: &mut Vec<f64>,
 ) {
-    let bearing = bearing_of_checked(contact, settings);
+    let within = bearing_depth(&contact.support);
+    let bearing = bearing_of_checked(contact, settings, within);
     build_bearing(
         bearing.as_ref().unwrap_or(contact),
         dt,
@@ -283,7 +292,7 @@ pub(crate) fn build(
     if bearing.is_some() {
         // The landing blocks (module doc): each vertex off the bearing part at its depth below
         // the part's edge, as a gap its normal row may close in this step and no more.
-        let cut = contact.depth() - bearing_depth(&contact.support);
+        let cut = contact.depth() - within;
         for (vertex, &depth) in contact.support.vertices().iter().zip(&contact.depths) {
             if depth < cut {
                 vertex::build_point(contact, vertex, depth - cut, dt, settings, problem, biases);
