@@ -403,7 +403,8 @@ mod tests {
     use crate::{BEARING_DEPTH, ContactFrame, ContactModel, Material};
 
     /// A 2 m square face of a frame tilted off the world's axes, with `depths` at its corners
-    /// (−1, −1), (1, −1), (1, 1), (−1, 1); the face model's rows of it between two bodies at rest.
+    /// (−1, −1), (1, −1), (1, 1), (−1, 1); the face model's rows of it between two bodies at
+    /// rest.
     fn face_rows(depths: [f64; 4], dt: f64) -> (Contact, Problem<ContactProjection>) {
         let square =
             [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(x, y)| Point2::new(x, y));

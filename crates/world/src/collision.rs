@@ -1,9 +1,9 @@
 //! Collision: broad phase, parry's contact normal, support polygons with their feature ids,
 //! written into the persistent [`ContactSet`]. Plain data in, the set out, so it can be run and
-//! timed alone; a pair neither of whose bodies moved keeps its contact, and one whose bodies
-//! barely slid or turned against each other has it carried with them (see
-//! [`ContactSet::refresh`], [`crate::carry`]), and a pair found apart along a face normal is not tested again
-//! while its bodies could not have closed the gap ([`crate::apart`]).
+//! timed alone; a pair neither of whose bodies moved keeps its contact, one whose bodies barely
+//! slid or turned against each other has it carried with them (see [`ContactSet::refresh`],
+//! [`crate::carry`]), and a pair found apart along a face normal is not tested again while its
+//! bodies could not have closed the gap ([`crate::apart`]).
 
 use nalgebra::Vector3;
 use tatami_contact::{Contact, Material};

@@ -428,8 +428,8 @@ impl ContactSet {
     /// other rows from the impulse their key had (rows whose key is new keep zero). A pair with
     /// nothing stored under `model` (new, or last solved under another model) starts instead
     /// with the weight it carries at rest under `weight_per_mass` (gravity × dt) spread evenly
-    /// over its normal rows — see [`crate::load_estimate`]. The face model's landing blocks,
-    /// after the pair's own, start from zero: they catch a landing, a step's event.
+    /// over its normal rows — see [`crate::load_estimate`]. The face model's landing blocks
+    /// start from zero ([`started_blocks`]).
     pub(crate) fn warm_start(
         &mut self,
         model: ContactModel,
@@ -451,25 +451,18 @@ impl ContactSet {
             if entry.state.blocks.is_empty() {
                 continue;
             }
-            let rows = rows_of(problem, &entry.state.blocks);
+            let started = started_blocks(model, &entry.state.blocks);
+            let rows = rows_of(problem, &started);
             let stored = match (&entry.state.last, model) {
                 (Solved::Face(impulse), ContactModel::Face) => {
-                    let face = problem.blocks[entry.state.blocks.start].rows.clone();
-                    impulse.write_face_rows(&mut problem.rows[face], &entry.contact.centre_a);
+                    impulse.write_face_rows(&mut problem.rows[rows], &entry.contact.centre_a);
                     continue;
                 }
                 (Solved::Rows(solved_with, stored), _) if *solved_with == model => {
                     &self.impulses[stored.clone()]
                 }
                 _ => {
-                    let blocks = match model {
-                        // The face model's own block; the landing blocks after it start unloaded.
-                        ContactModel::Face => {
-                            entry.state.blocks.start..entry.state.blocks.start + 1
-                        }
-                        _ => entry.state.blocks.clone(),
-                    };
-                    spread_over_normal_rows(problem, &blocks, estimate[index]);
+                    spread_over_normal_rows(problem, &started, estimate[index]);
                     continue;
                 }
             };
@@ -489,14 +482,14 @@ impl ContactSet {
     }
 
     /// Keeps what `problem`'s solve (under `model`) left of every pair for the next warm start:
-    /// the face model's block (the pair's first) as the impulse it applied to body A, other
-    /// rows' impulses by key.
+    /// the face model's block (the pair's first, [`started_blocks`]) as the impulse it applied
+    /// to body A, other rows' impulses by key.
     pub(crate) fn store(&mut self, model: ContactModel, problem: &Problem<ContactProjection>) {
         let next = &mut self.next_impulses;
         next.clear();
         for entry in &mut self.entries {
             let state = &mut entry.state;
-            let rows = rows_of(problem, &state.blocks);
+            let rows = rows_of(problem, &started_blocks(model, &state.blocks));
             state.last = match (&state.last, model) {
                 // A pair without rows this step (its bodies asleep) keeps what it had.
                 (Solved::Rows(solved_with, stored), _) if rows.is_empty() => {
@@ -506,7 +499,7 @@ impl ContactSet {
                 }
                 (last, _) if rows.is_empty() => last.clone(),
                 (_, ContactModel::Face) => Solved::Face(ContactImpulse::of_rows(
-                    &problem.rows[problem.blocks[state.blocks.start].rows.clone()],
+                    &problem.rows[rows],
                     entry.contact.centre_a,
                 )),
                 (_, ContactModel::Vertex | ContactModel::Patch) => {
@@ -547,6 +540,16 @@ pub(crate) fn support_of(contact: &Contact, gravity: &Vector3<f64>) -> Support {
         Support::A
     } else {
         Support::B
+    }
+}
+
+/// The blocks of a pair's `blocks` under `model` that its warm start starts and its store
+/// keeps: under the face model its own block, the first (the landing blocks of a tilted face
+/// follow it and start from zero: they catch a landing, a step's event); under the others all.
+fn started_blocks(model: ContactModel, blocks: &Range<usize>) -> Range<usize> {
+    match model {
+        ContactModel::Face => blocks.start..blocks.end.min(blocks.start + 1),
+        ContactModel::Vertex | ContactModel::Patch => blocks.clone(),
     }
 }
 
