@@ -28,6 +28,7 @@ mod body;
 pub mod dense;
 pub mod direct;
 mod error;
+mod island;
 pub mod lemke;
 pub mod linear_set;
 pub mod pgs;
@@ -38,6 +39,7 @@ pub use block::{Block, BoundsProjection, Projection, RowBound, project_to_bounds
 pub use body::{BodyId, SolverBody};
 pub use dense::pgs_dense;
 pub use error::LcpError;
+pub use island::DisjointSets;
 pub use lemke::lemke;
 pub use linear_set::{Budget, LinearSet};
 pub use row::{Jacobian, Row};

@@ -53,11 +53,15 @@
 //! the factor. On the 100-cube tower's first step (stack-timing experiment, the models' solves
 //! timed interleaved) the face model's solve went from 0.50× the vertex model's to 0.34×.
 //!
-//! **Stopping.** With [`PgsParams::tolerance`] > 0 the solve ends after the first sweep in which
-//! no row's update moved that row's velocity by as much as the tolerance. Warm-started from an
-//! exact carry-over, a scene at rest then costs one sweep; a moving scene runs every sweep. The
-//! measure is each row's own velocity change, so it reads in m/s (rad/s for angular rows)
-//! whatever the masses, unlike `max |Δλ|`.
+//! **Stopping, island by island.** With [`PgsParams::tolerance`] > 0 an island (blocks joined
+//! through bodies an impulse can move; a fixed floor joins nothing) stops after its first sweep
+//! in which no row's update moved that row's velocity by as much as the tolerance. Warm-started
+//! from an exact carry-over, an island at rest then costs one sweep; a moving one runs every
+//! sweep, and no longer keeps the resting ones sweeping with it. Islands share no velocity a
+//! block writes, so sweeping them one after the other gives the bits of sweeping them together:
+//! with a tolerance of 0 the answer is that of whole-problem sweeps. The measure is each row's own
+//! velocity change, so it reads in m/s (rad/s for angular rows) whatever the masses, unlike
+//! `max |Δλ|`.
 //!
 //! Decision record: the projection sees the whole block, not one row, because the face model's
 //! centre of pressure couples three rows (τ₁, τ₂, f₃) and cannot be clamped one row at a time.
@@ -70,6 +74,7 @@ use std::ops::Range;
 
 use nalgebra::{Matrix6, Vector3, Vector6};
 
+use crate::island::BlockIslands;
 use crate::{Jacobian, LcpError, Problem, Projection, SolverBody};
 
 /// PGS sweeps per step. Default [`DEFAULT_ITERATIONS`] = 15 (the paper; Springhead's numIter).
@@ -104,9 +109,9 @@ pub enum Record {
 pub struct PgsParams {
     /// Sweeps; see [`DEFAULT_ITERATIONS`].
     pub iterations: usize,
-    /// Stop before `iterations` after a sweep in which every row's update changed that row's own
-    /// velocity by less than this (`|Δλ| · J M⁻¹ Jᵀ`: m/s, or rad/s for angular rows). 0, the
-    /// default here and the paper's setting, runs every sweep.
+    /// An island stops before `iterations` after a sweep in which every one of its rows' updates
+    /// changed that row's own velocity by less than this (`|Δλ| · J M⁻¹ Jᵀ`: m/s, or rad/s for
+    /// angular rows). 0, the default here and the paper's setting, runs every sweep.
     pub tolerance: f64,
     /// Relaxation ω in (0, 2); see [`DEFAULT_RELAXATION`].
     pub relaxation: f64,
@@ -131,11 +136,12 @@ impl Default for PgsParams {
 /// What a solve did.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct PgsInfo {
-    /// Sweeps run: `iterations`, or fewer when the solve met its `tolerance`.
+    /// Most sweeps an island ran: `iterations`, or fewer when every island met the `tolerance`.
     pub sweeps: usize,
-    /// Row updates made (`sweeps × rows`), for throughput figures.
+    /// Row updates made (each island's sweeps × its rows), for throughput figures.
     pub row_updates: usize,
-    /// `max |Δλ|` per sweep when [`Record::ImpulseChange`] was asked for, else empty.
+    /// `max |Δλ|` per sweep (over the islands that ran it) when [`Record::ImpulseChange`] was
+    /// asked for, else empty.
     pub impulse_change: Vec<f64>,
 }
 
@@ -188,6 +194,8 @@ pub struct PgsWorkspace {
     /// Per block: `L` of `K = L Lᵀ` (`K` padded with the identity to 6 × 6) where `whole`
     /// says `Ready`. Only grown, never cleared: entries are written before they are read.
     factors: Vec<Matrix6<f64>>,
+    /// The problem's blocks by island; each island stops on its own.
+    islands: BlockIslands,
     block_impulse: Vec<f64>,
     /// The block's impulses as already pushed into the velocities.
     block_applied: Vec<f64>,
@@ -283,27 +291,52 @@ fn run<P: Projection>(
 ) -> Result<PgsInfo, LcpError> {
     problem.validate_bounds()?;
     prepare(problem, workspace, params.warm_start, prepared);
-    let mut info = PgsInfo {
-        sweeps: params.iterations,
-        row_updates: 0,
-        impulse_change: Vec::new(),
-    };
+    let mut info = PgsInfo::default();
     if params.record == Record::ImpulseChange {
         info.impulse_change.reserve_exact(params.iterations);
     }
-    for sweeps in 1..=params.iterations {
-        let change = sweep(problem, workspace, params.relaxation)?;
-        if params.record == Record::ImpulseChange {
-            info.impulse_change.push(change.impulse);
-        }
-        if change.velocity < params.tolerance {
-            info.sweeps = sweeps;
-            break;
-        }
-    }
-    info.row_updates = info.sweeps.saturating_mul(problem.rows.len());
+    // Taken out for the sweeps, which borrow the rest of the workspace; put back even on error.
+    let mut islands = std::mem::take(&mut workspace.islands);
+    islands.group(problem);
+    let solved = solve_islands(problem, workspace, &islands, params, &mut info);
+    workspace.islands = islands;
+    solved?;
     problem.validate_bodies()?;
     Ok(info)
+}
+
+/// Each island's sweeps, until its own first quiet sweep or `params.iterations`; `info` gets
+/// the most sweeps an island ran, the row updates made, and each sweep's largest impulse change
+/// over the islands that ran it.
+fn solve_islands<P: Projection>(
+    problem: &mut Problem<P>,
+    workspace: &mut PgsWorkspace,
+    islands: &BlockIslands,
+    params: &PgsParams,
+    info: &mut PgsInfo,
+) -> Result<(), LcpError> {
+    // A problem without blocks is swept as one empty island, to report its sweeps.
+    let none = islands.iter().next().is_none().then_some(&[][..]);
+    for blocks in islands.iter().chain(none) {
+        let rows: usize = blocks.iter().map(|&b| problem.blocks[b].rows.len()).sum();
+        let mut ran = params.iterations;
+        for sweeps in 1..=params.iterations {
+            let change = sweep(problem, workspace, blocks, params.relaxation)?;
+            if params.record == Record::ImpulseChange {
+                match info.impulse_change.get_mut(sweeps - 1) {
+                    Some(largest) => *largest = largest.max(change.impulse),
+                    None => info.impulse_change.push(change.impulse),
+                }
+            }
+            if change.velocity < params.tolerance {
+                ran = sweeps;
+                break;
+            }
+        }
+        info.sweeps = info.sweeps.max(ran);
+        info.row_updates = info.row_updates.saturating_add(ran.saturating_mul(rows));
+    }
+    Ok(())
 }
 
 /// Computes `M⁻¹Jᵀ` and effective masses, and applies or clears the starting impulses.
@@ -417,14 +450,16 @@ impl Change {
     }
 }
 
-/// One Gauss–Seidel pass over every block; returns how much it changed the impulses.
+/// One Gauss–Seidel pass over `blocks` (an island's, in order); returns how much it changed the
+/// impulses.
 fn sweep<P: Projection>(
     problem: &mut Problem<P>,
     workspace: &mut PgsWorkspace,
+    blocks: &[usize],
     relaxation: f64,
 ) -> Result<Change, LcpError> {
     let mut largest_change = Change::default();
-    for index in 0..problem.blocks.len() {
+    for &index in blocks {
         if stays_unloaded(problem, workspace, index, relaxation) {
             continue;
         }

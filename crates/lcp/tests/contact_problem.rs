@@ -631,3 +631,93 @@ fn a_block_solved_whole_is_exact_in_one_sweep() {
         );
     }
 }
+
+/// Two vertex-model cubes on one fixed ground, their blocks interleaved (a block of the first,
+/// one of the second, …): two islands, since the ground joins nothing.
+fn side_by_side(
+    first: &Problem<BoundsProjection>,
+    second: &Problem<BoundsProjection>,
+) -> Problem<BoundsProjection> {
+    let mut problem = Problem {
+        bodies: vec![SolverBody::fixed(), first.bodies[1], second.bodies[1]],
+        ..Problem::default()
+    };
+    for (a, b) in first.blocks.iter().zip(&second.blocks) {
+        for (block, body, source) in [(a, 1, first), (b, 2, second)] {
+            let start = problem.rows.len();
+            problem
+                .rows
+                .extend_from_slice(&source.rows[block.rows.clone()]);
+            problem.blocks.push(Block {
+                body_a: BodyId(body),
+                rows: start..problem.rows.len(),
+                ..block.clone()
+            });
+        }
+    }
+    problem
+}
+
+/// Islands: a cube sliding diagonally and spinning beside one at rest on the same fixed ground.
+/// With a tolerance of 0 solving them together gives each cube's bits solved alone (blocks of
+/// different islands share no velocity they write); with a tolerance the resting cube,
+/// warm-started from its answer, stops after one sweep while the sliding one keeps sweeping, and
+/// each lands on its own solve's bits.
+#[test]
+fn islands_are_solved_as_if_alone_and_stop_on_their_own() {
+    let sliding = || {
+        let mut problem = cube_on_ground(Vector3::new(0.3, 0.2, -G * DT), 0.5);
+        problem.bodies[1].angular_velocity = Vector3::new(0.1, -0.2, 0.4);
+        problem
+    };
+    let resting = || cube_on_ground(Vector3::new(0.0, 0.0, -G * DT), 0.5);
+    let mut workspace = PgsWorkspace::default();
+    let every_sweep = PgsParams {
+        iterations: 40,
+        ..PgsParams::default()
+    };
+    let mut together = side_by_side(&sliding(), &resting());
+    pgs::solve_in_place(&mut together, &mut workspace, &every_sweep).unwrap();
+    let mut alone = [sliding(), resting()];
+    for problem in &mut alone {
+        pgs::solve_in_place(problem, &mut workspace, &every_sweep).unwrap();
+    }
+    let solved = side_by_side(&alone[0], &alone[1]);
+    for (row, expected) in together.rows.iter().zip(&solved.rows) {
+        assert_eq!(row.impulse.to_bits(), expected.impulse.to_bits());
+    }
+    assert_eq!(together.bodies, solved.bodies);
+
+    // The resting cube warm-started from its converged answer, the sliding one from zero.
+    let converged_rest = alone[1].clone();
+    let warm = PgsParams {
+        iterations: 200,
+        tolerance: 1e-8,
+        warm_start: WarmStart::On,
+        ..PgsParams::default()
+    };
+    let mut together = side_by_side(&sliding(), &converged_rest);
+    together.bodies[2] = resting().bodies[1];
+    let info = pgs::solve_in_place(&mut together, &mut workspace, &warm).unwrap();
+    let mut sliding_alone = sliding();
+    let sliding_info = pgs::solve_in_place(&mut sliding_alone, &mut workspace, &warm).unwrap();
+    let mut rest_alone = converged_rest.clone();
+    rest_alone.bodies[1] = resting().bodies[1];
+    let rest_info = pgs::solve_in_place(&mut rest_alone, &mut workspace, &warm).unwrap();
+    assert_eq!(
+        rest_info.sweeps, 1,
+        "the resting cube's answer is already there"
+    );
+    assert!(sliding_info.sweeps > 5, "{} sweeps", sliding_info.sweeps);
+    assert_eq!(info.sweeps, sliding_info.sweeps);
+    assert_eq!(
+        info.row_updates,
+        sliding_info.row_updates + rest_info.row_updates,
+        "the resting island swept once"
+    );
+    let expected = side_by_side(&sliding_alone, &rest_alone);
+    for (row, expected) in together.rows.iter().zip(&expected.rows) {
+        assert_eq!(row.impulse.to_bits(), expected.impulse.to_bits());
+    }
+    assert_eq!(together.bodies, expected.bodies);
+}

@@ -21,10 +21,10 @@ pub enum Solver {
     Direct(DirectParams),
 }
 
-/// The default PGS solve stops early once a sweep changes every row's velocity by less than
-/// this (m/s, or rad/s for angular rows; [`PgsParams::tolerance`]): 0.1 mm/s, a thousandth of
-/// what gravity adds in a step at 100 Hz. Resting scenes, warm-started, then take one or two
-/// sweeps; moving ones take all of them.
+/// The default PGS solve stops an island early once a sweep changes every one of its rows'
+/// velocities by less than this (m/s, or rad/s for angular rows; [`PgsParams::tolerance`]):
+/// 0.1 mm/s, a thousandth of what gravity adds in a step at 100 Hz. Resting islands,
+/// warm-started, then take one or two sweeps; moving ones take all of them.
 pub const PGS_TOLERANCE: f64 = 1e-4;
 
 impl Default for Solver {

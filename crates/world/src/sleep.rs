@@ -15,6 +15,7 @@
 use crate::Body;
 use crate::body::BodyKind;
 use tatami_contact::Contact;
+use tatami_lcp::DisjointSets;
 
 /// When bodies fall asleep. The thresholds are Box2D's (its `b2_linearSleepTolerance`-like 5 cm/s
 /// and 2°/s for half a second).
@@ -54,7 +55,8 @@ impl Sleeping {
 /// The islands of one step: a union–find over the bodies, reused across steps.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Islands {
-    parent: Vec<usize>,
+    /// The dynamic bodies, joined through their contacts.
+    sets: DisjointSets,
     /// Per island root: whether it must be awake this step.
     awake: Vec<bool>,
     /// Per island root: whether a moving kinematic body touches it (it may not fall asleep).
@@ -131,26 +133,19 @@ impl Islands {
         }
     }
 
+    /// Islands do not depend on contact order: a set's root is its smallest body index.
     fn join<'a>(&mut self, bodies: &[Body], contacts: impl Iterator<Item = &'a Contact>) {
-        self.parent.clear();
-        self.parent.extend(0..bodies.len());
+        self.sets.reset(bodies.len());
         for contact in contacts {
             let (a, b) = (contact.body_a.0, contact.body_b.0);
             if bodies[a].is_dynamic() && bodies[b].is_dynamic() {
-                let (ra, rb) = (self.root(a), self.root(b));
-                // The smaller index becomes the root, so islands do not depend on contact order.
-                let (low, high) = (ra.min(rb), ra.max(rb));
-                self.parent[high] = low;
+                self.sets.join(a, b);
             }
         }
     }
 
-    /// The root of body `k`'s island, halving the path on the way.
-    fn root(&mut self, mut k: usize) -> usize {
-        while self.parent[k] != k {
-            self.parent[k] = self.parent[self.parent[k]];
-            k = self.parent[k];
-        }
-        k
+    /// The root of body `k`'s island.
+    fn root(&mut self, k: usize) -> usize {
+        self.sets.root(k)
     }
 }

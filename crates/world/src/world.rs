@@ -7,7 +7,7 @@ use nalgebra::Vector3;
 use tatami_contact::{Contact, ContactProjection};
 use tatami_lcp::direct::{self, DirectInfo};
 use tatami_lcp::pgs::{self, PgsParams, PgsWorkspace, Record, Support, WarmStart};
-use tatami_lcp::{LcpError, Problem, Row, SolverBody};
+use tatami_lcp::{DisjointSets, LcpError, Problem, Row, SolverBody};
 
 use crate::body::{BodyKind, Motion};
 use crate::carry::CarryBounds;
@@ -557,28 +557,17 @@ impl VelocitySolve<'_> {
         }
     }
 
-    /// The shock pass after the velocity solve, kept only if it leaves the bodies with no more
-    /// kinetic energy than the solve did: held still, a supporting body does not feel the
-    /// pass's reactions, which can push its load up as if off a fixed floor; undone then, the
-    /// pass can only take energy out (a falling stack stopped on its base).
+    /// The shock pass after the velocity solve, kept in each island (bodies joined by
+    /// contacts) only if it leaves that island's bodies with no more kinetic energy than the
+    /// solve did: held still, a supporting body does not feel the pass's reactions, which can
+    /// push its load up as if off a fixed floor; undone then, the pass can only take energy out
+    /// (a falling stack stopped on its base). Island by island, what the pass does to one pile
+    /// does not decide whether another keeps it.
     fn guarded_shock_pass(&mut self) -> Result<(), LcpError> {
         self.set_aside.save(self.problem);
         pgs::shock_propagation(self.problem, self.workspace, self.order)?;
-        // The dynamic bodies' kinetic energies before the pass (set aside) and after it, each
-        // body's world inertia computed once for both.
-        let (mut before, mut after) = (0.0, 0.0);
-        let velocities = self.set_aside.bodies.iter().zip(&self.problem.bodies);
-        for (body, (was, now)) in self.bodies.iter().zip(velocities) {
-            if !body.is_dynamic() {
-                continue;
-            }
-            let inertia = body.inertia_world();
-            before += body.kinetic_energy_at(&inertia, &was.linear_velocity, &was.angular_velocity);
-            after += body.kinetic_energy_at(&inertia, &now.linear_velocity, &now.angular_velocity);
-        }
-        if after > before {
-            self.set_aside.restore(self.problem);
-        }
+        self.set_aside
+            .restore_islands_that_gained(self.problem, self.bodies);
         Ok(())
     }
 }
@@ -658,12 +647,16 @@ impl PositionPass {
 /// wait for the helper.
 const POSITION_PASS_BESIDE_ROWS: usize = 1024;
 
-/// A solve's answer — velocities and impulses — kept to be put back (before the shock pass);
-/// buffers reused.
+/// A solve's answer — velocities and impulses — kept to be put back, island by island, where
+/// the shock pass added energy; buffers reused.
 #[derive(Debug, Clone, Default)]
 struct SolvedState {
     bodies: Vec<SolverBody>,
     impulses: Vec<f64>,
+    /// The dynamic bodies, joined through the problem's blocks.
+    islands: DisjointSets,
+    /// Per island root: the kinetic energy set aside and the one in the problem now.
+    energies: Vec<(f64, f64)>,
 }
 
 impl SolvedState {
@@ -673,10 +666,54 @@ impl SolvedState {
         self.impulses.extend(problem.rows.iter().map(|r| r.impulse));
     }
 
-    fn restore(&self, problem: &mut Problem<ContactProjection>) {
-        problem.bodies.clone_from(&self.bodies);
-        for (row, &impulse) in problem.rows.iter_mut().zip(&self.impulses) {
-            row.impulse = impulse;
+    /// Puts back the velocities and impulses set aside in every island whose dynamic bodies
+    /// have more kinetic energy in `problem` than they had then (`bodies` gives their masses).
+    fn restore_islands_that_gained(
+        &mut self,
+        problem: &mut Problem<ContactProjection>,
+        bodies: &[Body],
+    ) {
+        let dynamic = |k: usize| bodies[k].is_dynamic();
+        self.islands.reset(bodies.len());
+        for block in &problem.blocks {
+            let (a, b) = (block.body_a.0, block.body_b.0);
+            if dynamic(a) && dynamic(b) {
+                self.islands.join(a, b);
+            }
+        }
+        // Each body's world inertia computed once for both energies.
+        self.energies.clear();
+        self.energies.resize(bodies.len(), (0.0, 0.0));
+        let velocities = self.bodies.iter().zip(&problem.bodies);
+        for (k, (body, (was, now))) in bodies.iter().zip(velocities).enumerate() {
+            if !body.is_dynamic() {
+                continue;
+            }
+            let inertia = body.inertia_world();
+            let energy = &mut self.energies[self.islands.root(k)];
+            energy.0 +=
+                body.kinetic_energy_at(&inertia, &was.linear_velocity, &was.angular_velocity);
+            energy.1 +=
+                body.kinetic_energy_at(&inertia, &now.linear_velocity, &now.angular_velocity);
+        }
+        let mut gained = |k: usize| {
+            let (before, after) = self.energies[self.islands.root(k)];
+            after > before
+        };
+        for (k, body) in problem.bodies.iter_mut().enumerate() {
+            if dynamic(k) && gained(k) {
+                *body = self.bodies[k];
+            }
+        }
+        for block in &problem.blocks {
+            let (a, b) = (block.body_a.0, block.body_b.0);
+            let body = if dynamic(a) { a } else { b };
+            if dynamic(body) && gained(body) {
+                let rows = &mut problem.rows[block.rows.clone()];
+                for (row, &impulse) in rows.iter_mut().zip(&self.impulses[block.rows.clone()]) {
+                    row.impulse = impulse;
+                }
+            }
         }
     }
 }
@@ -746,5 +783,64 @@ mod tests {
         assert_eq!(world.bodies, moving);
         assert_ne!(world.bodies, before);
         assert_eq!((world.time(), world.steps()), (time, steps));
+    }
+
+    /// The shock pass's energy guard undoes the pass island by island: the island it sped up
+    /// gets its velocities and impulses back — its contacts with the floor included — and the
+    /// island it slowed keeps the pass's, as do the floor and everything else.
+    #[test]
+    fn the_energy_guard_restores_only_the_islands_that_gained() {
+        let cube =
+            |x: f64, z: f64| BodyDesc::dynamic(Shape::cuboid([1.0; 3])).position([x, 0.0, z]);
+        let mut world = World::builder()
+            .body(BodyDesc::fixed(Shape::cuboid([40.0, 40.0, 2.0])).position([0.0, 0.0, -1.0]))
+            .body(cube(-5.0, 0.5))
+            .body(cube(-5.0, 1.5))
+            .body(cube(5.0, 0.5))
+            .body(cube(5.0, 1.5))
+            .build()
+            .unwrap();
+        let mut problem = world.prepare_step(0.01).unwrap().clone();
+        assert!(problem.blocks.len() >= 4, "two stacks of two on the floor");
+        for (k, row) in problem.rows.iter_mut().enumerate() {
+            row.impulse = k as f64;
+        }
+        let mut set_aside = SolvedState::default();
+        set_aside.save(&problem);
+        // What a pass might do: the left stack (bodies 1, 2) sped up, the right one (3, 4)
+        // slowed, every impulse changed.
+        for (k, factor) in [(1, 2.0), (2, 1.5), (3, 0.5), (4, 0.9)] {
+            problem.bodies[k].linear_velocity *= factor;
+            problem.bodies[k].angular_velocity = Vector3::new(0.0, 0.0, 0.1 * factor);
+        }
+        for row in &mut problem.rows {
+            row.impulse += 0.5;
+        }
+        let passed = problem.clone();
+        set_aside.restore_islands_that_gained(&mut problem, &world.bodies);
+        for k in 0..problem.bodies.len() {
+            let expected = if k == 1 || k == 2 {
+                &set_aside.bodies[k]
+            } else {
+                &passed.bodies[k]
+            };
+            assert_eq!(&problem.bodies[k], expected, "body {k}");
+        }
+        let mut restored = 0;
+        for block in &problem.blocks {
+            let left = [block.body_a.0, block.body_b.0]
+                .iter()
+                .any(|&b| b == 1 || b == 2);
+            for r in block.rows.clone() {
+                let expected = if left {
+                    set_aside.impulses[r]
+                } else {
+                    passed.rows[r].impulse
+                };
+                assert_eq!(problem.rows[r].impulse, expected, "row {r}");
+                restored += usize::from(left);
+            }
+        }
+        assert!(restored > 0 && restored < problem.rows.len());
     }
 }
