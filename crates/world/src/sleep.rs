@@ -52,6 +52,11 @@ impl Sleeping {
     }
 }
 
+/// How much deeper than the slop (m) a contact may be for its island to fall asleep. The
+/// position pass brings a contact pressed in back to the slop a tenth of the excess a step,
+/// from above; an island asleep is not pushed at all, so one put to sleep deep in stays so.
+pub const SLEEP_DEPTH_TOLERANCE: f64 = 0.0005;
+
 /// The islands of one step: a union–find over the bodies, reused across steps.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Islands {
@@ -106,11 +111,29 @@ impl Islands {
     }
 
     /// Advances each awake dynamic body's rest time by `dt` (or resets it) and puts to sleep
-    /// every island whose bodies have all rested for `settings.time`. Uses the islands of the
+    /// every island whose bodies have all rested for `settings.time`, unless one of its
+    /// `contacts` is deeper than `slop` + [`SLEEP_DEPTH_TOLERANCE`]. Uses the islands of the
     /// last [`wake`](Self::wake).
-    pub(crate) fn fall_asleep(&mut self, bodies: &mut [Body], settings: &Sleeping, dt: f64) {
+    pub(crate) fn fall_asleep<'a>(
+        &mut self,
+        bodies: &mut [Body],
+        contacts: impl Iterator<Item = &'a Contact>,
+        settings: &Sleeping,
+        slop: f64,
+        dt: f64,
+    ) {
         self.rested.clear();
         self.rested.resize(bodies.len(), f64::INFINITY);
+        // A body pressed in stays awake, so the position pass goes on pushing it out: the
+        // island's shortest rest time is held at zero.
+        for contact in contacts.filter(|c| c.depth() > slop + SLEEP_DEPTH_TOLERANCE) {
+            for body in [contact.body_a.0, contact.body_b.0] {
+                if bodies[body].is_dynamic() {
+                    let root = self.root(body);
+                    self.rested[root] = 0.0;
+                }
+            }
+        }
         for (k, body) in bodies.iter_mut().enumerate() {
             if !body.is_dynamic() || body.asleep {
                 continue;

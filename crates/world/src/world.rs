@@ -306,8 +306,13 @@ impl World {
     /// Sleeping: puts to sleep the islands that have rested long enough.
     fn fall_asleep(&mut self, dt: f64) {
         if self.settings.sleeping.enabled {
-            self.islands
-                .fall_asleep(&mut self.bodies, &self.settings.sleeping, dt);
+            self.islands.fall_asleep(
+                &mut self.bodies,
+                self.contact_set.contacts(),
+                &self.settings.sleeping,
+                self.settings.contact.slop,
+                dt,
+            );
         }
     }
 

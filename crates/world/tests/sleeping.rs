@@ -245,3 +245,33 @@ fn a_control_call_wakes_a_sleeping_body() {
     world.step(DT).unwrap();
     assert!(world.body("cube").unwrap().linear_velocity().norm() > 0.5);
 }
+
+/// A body does not fall asleep pressed into another beyond the slop: asleep, the position pass
+/// would never push it out. A cube created 20 mm into the floor is at rest from the start while
+/// the pass pushes it out a tenth of the excess a step: it slept after the 0.5 s of rest, still
+/// 2.76 mm deep, for good. It must not sleep until within 0.5 mm of the slop (2 mm), and then
+/// does.
+#[test]
+fn a_body_pressed_in_beyond_the_slop_sleeps_only_once_pushed_out() {
+    let mut world = World::builder()
+        .settings(sleepy())
+        .body(floor())
+        .body(unit_cube("cube", [0.0, 0.0, 0.48]))
+        .build()
+        .unwrap();
+    let depth = |world: &World| world.contacts().map(|c| c.depth()).fold(0.0, f64::max);
+    let mut slept_at = None;
+    for step in 0..300 {
+        world.step(DT).unwrap();
+        if asleep(&world, "cube") && slept_at.is_none() {
+            slept_at = Some((step, depth(&world)));
+        }
+    }
+    let (step, deepest) = slept_at.expect("the cube sleeps within 5 s");
+    assert!(
+        deepest <= 0.0025,
+        "fell asleep {deepest} m deep at step {step}"
+    );
+    assert!(asleep(&world, "cube"));
+    assert!(depth(&world) <= 0.0025, "{} m deep asleep", depth(&world));
+}
