@@ -145,9 +145,10 @@ struct State {
     speed: f64,
 }
 
-fn median(mut times: Vec<Duration>) -> Duration {
-    times.sort_unstable();
-    times.get(times.len() / 2).copied().unwrap_or_default()
+/// The median of `values` (none NaN).
+fn median<T: PartialOrd + Copy + Default>(mut values: Vec<T>) -> T {
+    values.sort_unstable_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+    values.get(values.len() / 2).copied().unwrap_or_default()
 }
 
 /// Steps `step` (which returns its stage times) 600 times and measures.
@@ -192,15 +193,9 @@ fn measure(
         step: median(times),
         stages: stages.map(median),
         moved,
-        fastest: median_of(fastest),
-        penetration: median_of(penetration),
+        fastest: median(fastest),
+        penetration: median(penetration),
     })
-}
-
-/// The median of `values` (none NaN).
-fn median_of(mut values: Vec<f64>) -> f64 {
-    values.sort_unstable_by(f64::total_cmp);
-    values.get(values.len() / 2).copied().unwrap_or_default()
 }
 
 fn tatami(scene: &Scene) -> Result<Measured, String> {

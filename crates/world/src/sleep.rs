@@ -85,7 +85,7 @@ impl Islands {
         self.pushed.resize(bodies.len(), false);
         for (k, body) in bodies.iter().enumerate() {
             if body.is_dynamic() && !body.asleep {
-                let root = self.root(k);
+                let root = self.sets.root(k);
                 self.awake[root] = true;
             }
         }
@@ -96,14 +96,14 @@ impl Islands {
                     && bodies[mover].moves()
                     && bodies[other].is_dynamic()
                 {
-                    let root = self.root(other);
+                    let root = self.sets.root(other);
                     self.awake[root] = true;
                     self.pushed[root] = true;
                 }
             }
         }
         for (k, body) in bodies.iter_mut().enumerate() {
-            let root = self.root(k);
+            let root = self.sets.root(k);
             if body.asleep && self.awake[root] {
                 body.wake();
             }
@@ -129,7 +129,7 @@ impl Islands {
         for contact in contacts.filter(|c| c.depth() > slop + SLEEP_DEPTH_TOLERANCE) {
             for body in [contact.body_a.0, contact.body_b.0] {
                 if bodies[body].is_dynamic() {
-                    let root = self.root(body);
+                    let root = self.sets.root(body);
                     self.rested[root] = 0.0;
                 }
             }
@@ -141,11 +141,11 @@ impl Islands {
             let resting = body.linear_velocity.norm() < settings.linear_speed
                 && body.angular_velocity.norm() < settings.angular_speed;
             body.rest_time = if resting { body.rest_time + dt } else { 0.0 };
-            let root = self.root(k);
+            let root = self.sets.root(k);
             self.rested[root] = self.rested[root].min(body.rest_time);
         }
         for (k, body) in bodies.iter_mut().enumerate() {
-            let root = self.root(k);
+            let root = self.sets.root(k);
             if body.is_dynamic()
                 && !body.asleep
                 && !self.pushed[root]
@@ -165,10 +165,5 @@ impl Islands {
                 self.sets.join(a, b);
             }
         }
-    }
-
-    /// The root of body `k`'s island.
-    fn root(&mut self, k: usize) -> usize {
-        self.sets.root(k)
     }
 }

@@ -121,8 +121,8 @@ fn a_cube_left_tilted_on_an_edge_falls_flat() {
 /// catch the face as it comes down: without them a 5 cm cube at 60 Hz turned past flat in one
 /// step and sank 29 mm into the floor. Bounds: the tilt as for the 2 m cube above, twice the
 /// bearing depth over the side (0.08°, where 0.5 mm would allow 0.11° to 1.1° on these sides);
-/// the deepest point within the slop, where resting contacts stop (2 mm), and 0.1 mm for its
-/// last step's rounding.
+/// at rest, |ω| under 1e-4 rad/s (a cube still tipping turns at rad/s); the deepest point within
+/// the slop, where resting contacts stop (2 mm), and 0.1 mm for its last step's rounding.
 #[test]
 fn small_cubes_left_tilted_on_an_edge_fall_flat() {
     let slop = tatami_contact::ContactSettings::default().slop;
