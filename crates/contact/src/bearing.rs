@@ -117,6 +117,8 @@ pub(crate) fn bearing_part(contact: &Contact, within: f64) -> Option<Contact> {
         centre_b: contact.centre_b,
         frame: contact.frame,
         material: contact.material,
+        // The face model reads them off the whole contact.
+        landing: Vec::new(),
     })
 }
 
@@ -139,6 +141,7 @@ mod tests {
             support: ConvexPolygon::from_points(vertices).unwrap(),
             depths,
             material: Material::new(0.5, 0.5, 0.0).unwrap(),
+            landing: Vec::new(),
         }
     }
 

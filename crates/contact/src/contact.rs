@@ -1,6 +1,6 @@
 //! One contact between two bodies, as every contact model sees it.
 
-use nalgebra::Point3;
+use nalgebra::{Point2, Point3};
 use tatami_geometry::ConvexPolygon;
 use tatami_lcp::BodyId;
 
@@ -29,6 +29,21 @@ pub struct Contact {
     pub depths: Vec<f64>,
     /// Combined friction and restitution.
     pub material: Material,
+    /// Points of either body standing off the support polygon within the contact margin, where
+    /// the touching feature would land if the body turned: the face model's landing points
+    /// (usually none). A cylinder resting on the lowest point of its cap's rim touches at that
+    /// point alone, yet as it wobbles the lowest point runs round the rim; held at one point,
+    /// the rim beside it went 1 cm into the floor. Read by the face model only.
+    pub landing: Vec<Landing>,
+}
+
+/// A point of a contact's plane where a body stands off the other ([`Contact::landing`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Landing {
+    /// Where, in the frame's plane coordinates (as the support polygon's vertices).
+    pub point: Point2<f64>,
+    /// Penetration there along `n`: negative, a gap.
+    pub depth: f64,
 }
 
 impl Contact {
@@ -40,7 +55,8 @@ impl Contact {
             .fold(f64::NEG_INFINITY, f64::max)
     }
 
-    /// Checks that there is one finite depth per support vertex.
+    /// Checks that there is one finite depth per support vertex, and that the landing points
+    /// are finite.
     pub(crate) fn validate_depths(&self) -> Result<(), ContactError> {
         let vertices = self.support.vertices().len();
         if self.depths.len() != vertices {
@@ -51,6 +67,12 @@ impl Contact {
         }
         if !self.depths.iter().all(|d| d.is_finite()) {
             return Err(ContactError::NonFinite { what: "depth" });
+        }
+        let landing = |l: &Landing| l.point.iter().chain([&l.depth]).all(|x| x.is_finite());
+        if !self.landing.iter().all(landing) {
+            return Err(ContactError::NonFinite {
+                what: "landing point",
+            });
         }
         Ok(())
     }
@@ -109,6 +131,7 @@ mod tests {
                 kinetic_friction: 0.5,
                 restitution: 0.0,
             },
+            landing: Vec::new(),
         };
         assert!(contact(0.5).validate(2).is_ok());
         for bad in [f64::NAN, -0.1, f64::INFINITY] {

@@ -67,7 +67,7 @@ mod target;
 pub mod vertex;
 
 pub use bearing::{BEARING_DEPTH, BEARING_DEPTH_PER_WIDTH, bearing_depth};
-pub use contact::Contact;
+pub use contact::{Contact, Landing};
 pub use error::ContactError;
 pub use frame::ContactFrame;
 pub use impulse::ContactImpulse;

@@ -31,6 +31,7 @@ fn contact(support: ConvexPolygon, turn: Rotation3<f64>, centre_a: Point3<f64>) 
         support,
         depths: vec![0.0; count],
         material: Material::new(0.5, 0.5, 0.0).unwrap(),
+        landing: Vec::new(),
     }
 }
 

@@ -48,6 +48,7 @@ fn cube_on_ground(
         support: ConvexPolygon::from_points(&corners).unwrap(),
         depths: vec![0.0; 4],
         material: Material::new(MU, MU, 0.0).unwrap(),
+        landing: Vec::new(),
     };
     let mut cube = SolverBody::fixed();
     cube.inv_mass = 1.0;

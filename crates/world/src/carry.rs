@@ -10,6 +10,7 @@
 //! away (shallower) or in (deeper). The slip and turn are summed over the steps the contact is
 //! carried, so it is never further than the bounds from the contact computed at its poses.
 
+use nalgebra::Point2;
 use tatami_contact::Contact;
 
 use crate::contact_set::Pose;
@@ -87,15 +88,32 @@ pub(crate) fn carry(
     if n > depths.len() {
         return false;
     }
-    for ((v, &depth), new) in vertices.iter().zip(&contact.depths).zip(&mut depths) {
+    // How far the points of A and B at `v` (plane coordinates) moved apart: along the normal,
+    // and across it.
+    let apart_at = |v: &Point2<f64>| {
         let p = frame.to_world(v);
         let of_a = move_a * (p - ca) + na.coords;
         let of_b = move_b * (p - cb) + nb.coords;
         let apart = of_a - of_b;
         let along = apart.dot(&normal);
-        slip = slip.max((apart - normal * along).norm());
+        (along, (apart - normal * along).norm())
+    };
+    for ((v, &depth), new) in vertices.iter().zip(&contact.depths).zip(&mut depths) {
+        let (along, across) = apart_at(v);
+        slip = slip.max(across);
         *new = depth - along;
         if (*new > 0.0) != (depth > 0.0) {
+            return false;
+        }
+    }
+    // Landing points (at most a cap's other vertices) move the same way, and stay gaps.
+    let mut landing = [0.0; CAP_VERTICES];
+    if contact.landing.len() > landing.len() {
+        return false;
+    }
+    for (point, new) in contact.landing.iter().zip(&mut landing) {
+        *new = point.depth - apart_at(&point.point).0;
+        if *new > 0.0 {
             return false;
         }
     }
@@ -113,6 +131,9 @@ pub(crate) fn carry(
     contact.frame.tangent2 = move_b * frame.tangent2;
     contact.frame.normal = normal;
     contact.depths.copy_from_slice(&depths[..n]);
+    for (point, &depth) in contact.landing.iter_mut().zip(&landing) {
+        point.depth = depth;
+    }
     contact.centre_a = *na;
     contact.centre_b = *nb;
     true
@@ -151,6 +172,7 @@ mod tests {
             support: ConvexPolygon::from_points(&square.map(|(x, y)| Point2::new(x, y))).unwrap(),
             depths: vec![1e-3, 1e-3, 5e-4, 5e-4],
             material: Material::new(0.5, 0.5, 0.0).unwrap(),
+            landing: Vec::new(),
         };
         (contact, was)
     }
@@ -247,5 +269,42 @@ mod tests {
         assert!(carry(&mut slid, &mut drift, &was, &first, &bounds()));
         let second = with_a(was[0].0 + t * 1.2e-4, was[0].1);
         assert!(!carry(&mut slid, &mut drift, &first, &second, &bounds()));
+    }
+
+    /// Landing points move as the vertices do: A lifted 0.3 mm along the normal leaves each
+    /// landing gap 0.3 mm wider; A pushed 0.6 mm in would close the 0.5 mm gap (the support
+    /// vertices stay pressed in), and the contact is left to be found afresh.
+    #[test]
+    fn landing_gaps_move_with_the_bodies_and_do_not_close() {
+        let (mut contact, was) = resting();
+        contact.landing = [(0.8, 0.1, -5e-4), (-0.2, 0.9, -2e-3)]
+            .map(|(x, y, depth)| tatami_contact::Landing {
+                point: Point2::new(x, y),
+                depth,
+            })
+            .to_vec();
+        let n = contact.frame.normal;
+        let with_a = |by: f64| [(was[0].0 + n * by, was[0].1), was[1]];
+        let mut lifted = contact.clone();
+        assert!(carry(
+            &mut lifted,
+            &mut Drift::default(),
+            &was,
+            &with_a(3e-4),
+            &bounds(),
+        ));
+        for (l, m) in lifted.landing.iter().zip(&contact.landing) {
+            assert_eq!(l.point, m.point);
+            assert!((l.depth - (m.depth - 3e-4)).abs() < 1e-12);
+        }
+        let mut pressed = contact.clone();
+        assert!(!carry(
+            &mut pressed,
+            &mut Drift::default(),
+            &was,
+            &with_a(-6e-4),
+            &bounds(),
+        ));
+        assert_eq!(pressed, contact);
     }
 }

@@ -92,6 +92,9 @@ pub(crate) struct CollisionSettings {
     /// How far a contact is carried with its bodies before it is found afresh; `None` finds
     /// every moved pair's afresh (the named models, see [`crate::carry`]).
     pub carry: Option<CarryBounds>,
+    /// Whether contacts get their landing points within the margin (the face model's,
+    /// [`tatami_contact::Contact::landing`]).
+    pub landing: bool,
 }
 
 /// Brings `set` up to date: one contact per pair closer than the margin, ordered from the
@@ -109,7 +112,9 @@ pub(crate) fn detect(
         feature_angle,
         ids,
         carry,
+        landing,
     } = settings;
+    let landing_band = if landing { margin } else { 0.0 };
     set.begin(margin, feature_angle, ids, carry);
     let feature_angle = FeatureAngle::new(feature_angle);
     let CollisionWorkspace {
@@ -136,7 +141,7 @@ pub(crate) fn detect(
             geometry,
             poses,
             pair,
-            margin,
+            (margin, landing_band),
             &feature_angle,
             ids,
             features,
@@ -214,7 +219,8 @@ pub(crate) fn detect(
 /// The contact of pair `(i, j)` at the bodies' current poses, with its feature ids (if `ids`
 /// asks) and the poses it was computed at; or, when the bodies are farther apart than `margin`,
 /// the face normal that shows it if one does. The contact's depths go into `depths` (see
-/// [`support`]).
+/// [`support`]). Its landing points are those standing back by at most `landing_band` (m; 0
+/// for none).
 #[expect(
     clippy::too_many_arguments,
     reason = "the pass's read-only inputs, the thread's scratch and the recycled buffer"
@@ -224,7 +230,7 @@ fn contact_of(
     geometry: &[BodyGeometry],
     poses: &[parry3d_f64::math::Pose],
     (i, j): (usize, usize),
-    margin: f64,
+    (margin, landing_band): (f64, f64),
     feature_angle: &FeatureAngle,
     ids: VertexIds,
     features: &mut Features,
@@ -262,6 +268,20 @@ fn contact_of(
         feature_angle,
         &mut features.b,
     );
+    geometry[i].outline.landing(
+        &a.position(),
+        &a.rotation,
+        &-normal,
+        landing_band,
+        &mut features.a,
+    );
+    geometry[j].outline.landing(
+        &b.position(),
+        &b.rotation,
+        &normal,
+        landing_band,
+        &mut features.b,
+    );
     let Some(s) = support(&features.a, &features.b, &normal, depths, ids) else {
         return Found::Nothing;
     };
@@ -285,6 +305,7 @@ fn contact_of(
         support: s.polygon,
         depths: s.depths,
         material: combine(a, b),
+        landing: s.landing,
     };
     Found::Touching((contact, s.features, found_at))
 }
@@ -332,6 +353,16 @@ mod tests {
     }
 
     /// Where the world's bodies' collision shapes are.
+    /// The landing band the world's collision uses under its model.
+    fn landing_band(world: &World) -> f64 {
+        let face = world.settings.model == tatami_contact::ContactModel::Face;
+        if face {
+            world.settings.contact_margin
+        } else {
+            0.0
+        }
+    }
+
     fn poses_of(world: &World) -> Vec<parry3d_f64::math::Pose> {
         let pose = |b: &Body| parry_bridge::pose(&b.position(), &b.rotation);
         world.bodies.iter().map(pose).collect()
@@ -365,7 +396,7 @@ mod tests {
                         &world.geometry,
                         &poses,
                         (i, j),
-                        margin,
+                        (margin, landing_band(&world)),
                         &angle,
                         VertexIds::for_model(world.settings.model),
                         &mut features,
@@ -416,7 +447,7 @@ mod tests {
                     &world.geometry,
                     &poses,
                     pair,
-                    margin,
+                    (margin, landing_band(&world)),
                     &angle,
                     VertexIds::for_model(world.settings.model),
                     &mut features,

@@ -821,6 +821,7 @@ mod tests {
                 depths: vec![0.0; support.vertices().len()],
                 support,
                 material: Material::new(0.5, 0.5, 0.0).expect("a material"),
+                landing: Vec::new(),
             }
         };
         let rows = |set: &mut ContactSet| {

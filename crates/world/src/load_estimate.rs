@@ -108,6 +108,7 @@ mod tests {
             support: ConvexPolygon::from_points(&[Point2::origin()]).unwrap(),
             depths: vec![0.0],
             material: Material::new(0.5, 0.5, 0.0).unwrap(),
+            landing: Vec::new(),
         }
     }
 

@@ -28,7 +28,7 @@
 use nalgebra::{Matrix3, Point2, Point3, UnitQuaternion, Vector3};
 use smallvec::SmallVec;
 use std::sync::OnceLock;
-use tatami_contact::{ContactFrame, ContactModel};
+use tatami_contact::{ContactFrame, ContactModel, Landing};
 use tatami_geometry::nearest::closest_point_on_segment;
 use tatami_geometry::polygon::ring_next;
 use tatami_geometry::{ConvexPolygon, PolygonKind, signed_area};
@@ -70,6 +70,9 @@ pub(crate) struct Feature {
     pub ring: bool,
     /// Outward unit normal of the face holding every point, if known.
     pub face_normal: Option<Vector3<f64>>,
+    /// Points of the body beside the feature where it would land if it turned
+    /// ([`Outline::landing`]); empty unless asked for.
+    pub landing: Vec<FeaturePoint>,
 }
 
 /// Where a support-polygon vertex comes from: a point of A's touching feature, one of B's, or
@@ -291,6 +294,58 @@ impl Outline {
     }
 }
 
+impl Outline {
+    /// Writes into `feature.landing` the points beside its touching feature along the unit
+    /// `direction` (as [`Outline::feature`] found it) that stand back from it by at most `band`
+    /// (m) along that direction: for a cylinder touching with one point of its cap's rim, the
+    /// cap polygon's other vertices within `band` of that point, where the rim lands as the
+    /// cylinder wobbles ([`tatami_contact::Contact::landing`]). No other feature has any: a
+    /// polyhedron's faces, edges and corners land on points of its feature.
+    pub(crate) fn landing(
+        &self,
+        origin: &Point3<f64>,
+        rotation: &UnitQuaternion<f64>,
+        direction: &Vector3<f64>,
+        band: f64,
+        feature: &mut Feature,
+    ) {
+        feature.landing.clear();
+        let Self::Cylinder {
+            radius,
+            half_height,
+        } = self
+        else {
+            return;
+        };
+        // The rim point alone is the feature exactly when it is neither a cap nor a side line.
+        let [rim] = feature.points[..] else {
+            return;
+        };
+        if band <= 0.0 || feature.face_normal.is_some() {
+            return;
+        }
+        let d = rotation.inverse_transform_vector(direction);
+        let cap = half_height.copysign(d.z);
+        let top = u32::from(cap > 0.0);
+        let lowest = rotation.inverse_transform_vector(&(rim.point - origin));
+        let extreme = lowest.dot(&d);
+        // A cap vertex on the rim point itself would be a second contact at the same place.
+        let apart_squared = (1e-6 * radius).powi(2);
+        feature.landing.extend(
+            (0u32..)
+                .zip(cap_directions())
+                .map(|(k, (cos, sin))| (k, Vector3::new(radius * cos, radius * sin, cap)))
+                .filter(|(_, v)| {
+                    extreme - v.dot(&d) <= band && (v - lowest).norm_squared() > apart_squared
+                })
+                .map(|(k, v)| FeaturePoint {
+                    point: origin + rotation * v,
+                    id: k + top * CAP_VERTICES as u32,
+                }),
+        );
+    }
+}
+
 /// Drops from `points` every point that another lies above more steeply than the feature
 /// `angle` along the unit `direction` ([`FeatureAngle::is_steeper`]): what is left is the face,
 /// edge or corner tilted by less than that angle from the plane normal to `direction`. Unlike a
@@ -356,6 +411,8 @@ pub(crate) struct Support {
     pub polygon: ConvexPolygon,
     pub depths: Vec<f64>,
     pub features: FeatureIds,
+    /// Each feature's landing points over the other's outline, with their depths.
+    pub landing: Vec<Landing>,
 }
 
 /// The support polygon of A's `feature_a` resting on B's `feature_b`, with `normal` (unit) from B
@@ -399,11 +456,25 @@ pub(crate) fn support(
         }
         VertexIds::Unnamed => FeatureIds::new(),
     };
+    let mut landing = Vec::new();
+    for (feature, other, sign) in [(feature_a, &surface_b, 1.0), (feature_b, &surface_a, -1.0)] {
+        if other.kind != PolygonKind::Polygon {
+            continue;
+        }
+        landing.extend(feature.landing.iter().filter_map(|f| {
+            let point = frame.to_plane(&f.point);
+            let height = (f.point - frame.origin).dot(&frame.normal);
+            // Depth as for the support's vertices: B's height less A's.
+            let depth = sign * (other.height(&point) - height);
+            other.covers(&point).then_some(Landing { point, depth })
+        }));
+    }
     Some(Support {
         frame,
         polygon,
         depths,
         features,
+        landing,
     })
 }
 
@@ -527,6 +598,12 @@ impl Surface {
 
     fn height(&self, p: &Point2<f64>) -> f64 {
         self.coefficients.dot(&Vector3::new(1.0, p.x, p.y))
+    }
+
+    /// Whether `p` is within the outline (counter-clockwise, convex) or on it.
+    fn covers(&self, p: &Point2<f64>) -> bool {
+        let v = &self.outline;
+        (0..v.len()).all(|k| signed_area(&v[k], &v[ring_next(k, v.len())], p) >= 0.0)
     }
 
     /// The id of the first point of the outline edge nearest to `p` (counter-clockwise).
@@ -714,6 +791,7 @@ mod tests {
             points: points.to_vec(),
             ring: false,
             face_normal: None,
+            landing: Vec::new(),
         }
     }
 
@@ -887,7 +965,12 @@ mod tests {
             let by_fit = Surface::fit(&frame, &fitted(&face), VertexIds::Named).unwrap();
             let scale = 1e-9 * (1.0 + x.abs() + y.abs() + z.abs());
             for points in [face.clone(), backwards] {
-                let placed = Feature { points, ring: true, face_normal: Some(lean * Vector3::z()) };
+                let placed = Feature {
+                    points,
+                    ring: true,
+                    face_normal: Some(lean * Vector3::z()),
+                    landing: Vec::new(),
+                };
                 let by_plane = Surface::fit(&frame, &placed, VertexIds::Named).unwrap();
                 prop_assert_eq!(by_plane.kind, PolygonKind::Polygon);
                 let start = by_plane.ids.iter().position(|&id| id == by_fit.ids[0]).unwrap();
@@ -963,5 +1046,92 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A cylinder touching with one point of its cap's rim (tilted past the feature angle,
+    /// about an axis off the body's axes) lands on the cap's other vertices within the band of
+    /// that point: each of them stands back by no more than the band, the rest by more, and the
+    /// rim point itself is not among them. A cap lying flat, a side line and a box have none.
+    #[test]
+    fn a_cylinder_on_its_rim_lands_on_the_cap_vertices_within_the_band() {
+        let angle = FeatureAngle::new(1f64.to_radians());
+        let (radius, half_height, band) = (0.4, 0.45, 0.005);
+        let cylinder = Outline::Cylinder {
+            radius,
+            half_height,
+        };
+        let origin = Point3::new(0.3, -0.2, 1.0);
+        let down = -Vector3::z();
+        let landing_of = |outline: &Outline, rotation: &UnitQuaternion<f64>| {
+            let mut feature = Feature::default();
+            outline.feature(&origin, rotation, &down, &angle, &mut feature);
+            outline.landing(&origin, rotation, &down, band, &mut feature);
+            feature
+        };
+        let axis = Vector3::new(1.0, 2.0, 0.0).normalize();
+        for tilt in [1.4f64, 3.0, 30.0] {
+            let rotation = UnitQuaternion::from_axis_angle(
+                &nalgebra::Unit::new_normalize(axis),
+                tilt.to_radians(),
+            ) * UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 0.3);
+            let feature = landing_of(&cylinder, &rotation);
+            let [rim] = feature.points[..] else {
+                panic!("{tilt}°: one rim point, got {}", feature.points.len());
+            };
+            // Every vertex of the bottom cap, with how far it stands back from the rim point.
+            let rise = |v: &Point3<f64>| (v - rim.point).dot(&-down);
+            let within: Vec<_> = cap_directions()
+                .iter()
+                .map(|(cos, sin)| {
+                    origin + rotation * Vector3::new(radius * cos, radius * sin, -half_height)
+                })
+                .filter(|v| rise(v) <= band && (v - rim.point).norm() > 1e-9)
+                .collect();
+            assert_eq!(feature.landing.len(), within.len(), "{tilt}°");
+            // The arc of the rim within the band: `R (1 − cos φ) sin θ ≤ band` either side of the
+            // rim point, over vertices 2π/64 apart.
+            let arc = (1.0 - band / (radius * tilt.to_radians().sin())).acos();
+            let spacing = std::f64::consts::TAU / CAP_VERTICES as f64;
+            let sides = (arc / spacing).floor() as usize..=(arc / spacing).ceil() as usize;
+            assert!(
+                sides.contains(&(within.len() / 2)),
+                "{tilt}°: {} in the band",
+                within.len()
+            );
+            for (landing, vertex) in feature.landing.iter().zip(&within) {
+                assert!((landing.point - vertex).norm() < 1e-12, "{tilt}°");
+                assert!((0.0..=band).contains(&rise(&landing.point)), "{tilt}°");
+            }
+        }
+        // Flat within the feature angle: the cap is the feature, nothing to land on.
+        let flat = UnitQuaternion::from_axis_angle(
+            &nalgebra::Unit::new_normalize(axis),
+            0.5f64.to_radians(),
+        );
+        assert!(landing_of(&cylinder, &flat).landing.is_empty());
+        // On its side: the side line.
+        let side = UnitQuaternion::from_axis_angle(
+            &nalgebra::Unit::new_normalize(axis),
+            90f64.to_radians(),
+        );
+        let feature = landing_of(&cylinder, &side);
+        assert_eq!(feature.points.len(), 2);
+        assert!(feature.landing.is_empty());
+        // A box on a corner: its corner is all it has.
+        let h = Vector3::new(0.5, 0.5, 0.5);
+        let cube = Outline::polyhedron(
+            (0..8)
+                .map(|k| {
+                    h.component_mul(&Vector3::new(
+                        if k & 1 == 0 { -1.0 } else { 1.0 },
+                        if k & 2 == 0 { -1.0 } else { 1.0 },
+                        if k & 4 == 0 { -1.0 } else { 1.0 },
+                    ))
+                })
+                .collect(),
+            Some(h),
+        );
+        let corner = UnitQuaternion::from_euler_angles(0.6, 0.5, 0.2);
+        assert!(landing_of(&cube, &corner).landing.is_empty());
     }
 }

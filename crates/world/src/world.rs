@@ -4,7 +4,7 @@ use std::ops::Range;
 use std::time::Instant;
 
 use nalgebra::Vector3;
-use tatami_contact::{Contact, ContactProjection};
+use tatami_contact::{Contact, ContactModel, ContactProjection};
 use tatami_lcp::direct::{self, DirectInfo};
 use tatami_lcp::pgs::{self, PgsParams, PgsWorkspace, Record, Support, WarmStart};
 use tatami_lcp::{DisjointSets, LcpError, Problem, Row, SolverBody};
@@ -335,6 +335,7 @@ impl World {
             feature_angle: settings.feature_angle,
             ids,
             carry,
+            landing: settings.model == ContactModel::Face,
         };
         collision::detect(
             &self.bodies,
