@@ -233,6 +233,7 @@ impl Projection for FaceProjection {
 ///     support: ConvexPolygon::from_points(&square)?,
 ///     depths: vec![0.001, -0.02, -0.02, 0.001],
 ///     material: Material::new(0.5, 0.5, 0.0)?,
+///     landing: Vec::new(),
 /// };
 /// let settings = ContactSettings::default();
 /// let bearing = bearing_contact(&tilted, &settings)?.expect("the far edge stands off");

@@ -36,6 +36,7 @@
 //!     support: ConvexPolygon::from_points(&square)?,
 //!     depths: vec![0.0; 4],
 //!     material: Material::new(0.5, 0.5, 0.0)?,
+//!     landing: Vec::new(),
 //! };
 //! let mut problem = Problem { bodies: vec![cube, SolverBody::fixed()], ..Default::default() };
 //! ContactModel::Vertex.build(&contact, 0.01, &ContactSettings::default(), &mut problem)?;
