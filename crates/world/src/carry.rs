@@ -14,7 +14,7 @@ use nalgebra::Point2;
 use tatami_contact::Contact;
 
 use crate::contact_set::Pose;
-use crate::support::CAP_VERTICES;
+use crate::support::{CAP_VERTICES, LANDING_POINTS_PER_SIDE};
 
 /// Most slip of the bodies' surfaces against each other across a carried contact, as a
 /// fraction of the slop: 0.1 mm at the default 2 mm, far below the depths the solver tells
@@ -106,8 +106,8 @@ pub(crate) fn carry(
             return false;
         }
     }
-    // Landing points (at most a cap's other vertices) move the same way, and stay gaps.
-    let mut landing = [0.0; CAP_VERTICES];
+    // Landing points (at most a few each side of a rim point) move the same way, and stay gaps.
+    let mut landing = [0.0; 2 * LANDING_POINTS_PER_SIDE];
     if contact.landing.len() > landing.len() {
         return false;
     }

@@ -294,13 +294,23 @@ impl Outline {
     }
 }
 
+/// Most landing points on either side of a cylinder's rim point ([`Outline::landing`]),
+/// spread evenly over the arc of the rim within the band, the farthest always among them.
+/// Between two of them the rim sags below their chord by about a 36th of the band (0.14 mm
+/// under the default 5 mm margin) whatever the tilt, since the band sets the arc; a nearly
+/// flat cap would otherwise take every vertex of a long arc (11 a side at 1.4°, a landing
+/// block each). Two a side let a cylinder wobbling at 3° go 3.1 mm into the floor
+/// (`face_model.rs`), past the slop.
+pub(crate) const LANDING_POINTS_PER_SIDE: usize = 3;
+
 impl Outline {
-    /// Writes into `feature.landing` the points beside its touching feature along the unit
+    /// Writes into `feature.landing` points beside its touching feature along the unit
     /// `direction` (as [`Outline::feature`] found it) that stand back from it by at most `band`
-    /// (m) along that direction: for a cylinder touching with one point of its cap's rim, the
-    /// cap polygon's other vertices within `band` of that point, where the rim lands as the
-    /// cylinder wobbles ([`tatami_contact::Contact::landing`]). No other feature has any: a
-    /// polyhedron's faces, edges and corners land on points of its feature.
+    /// (m) along that direction: for a cylinder touching with one point of its cap's rim, cap
+    /// polygon vertices within `band` of that point on either side, where the rim lands as the
+    /// cylinder wobbles ([`tatami_contact::Contact::landing`]; [`LANDING_POINTS_PER_SIDE`] of
+    /// them a side at most). No other feature has any: a polyhedron's faces, edges and corners
+    /// land on points of its feature.
     pub(crate) fn landing(
         &self,
         origin: &Point3<f64>,
@@ -329,20 +339,44 @@ impl Outline {
         let top = u32::from(cap > 0.0);
         let lowest = rotation.inverse_transform_vector(&(rim.point - origin));
         let extreme = lowest.dot(&d);
+        let vertex = |k: usize| {
+            let (cos, sin) = cap_directions()[k % CAP_VERTICES];
+            Vector3::new(radius * cos, radius * sin, cap)
+        };
+        // The first cap vertex counter-clockwise from the rim point (at or past its angle).
+        let spacing = std::f64::consts::TAU / CAP_VERTICES as f64;
+        let first =
+            (lowest.y.atan2(lowest.x).rem_euclid(std::f64::consts::TAU) / spacing).ceil() as usize;
         // A cap vertex on the rim point itself would be a second contact at the same place.
         let apart_squared = (1e-6 * radius).powi(2);
-        feature.landing.extend(
-            (0u32..)
-                .zip(cap_directions())
-                .map(|(k, (cos, sin))| (k, Vector3::new(radius * cos, radius * sin, cap)))
-                .filter(|(_, v)| {
-                    extreme - v.dot(&d) <= band && (v - lowest).norm_squared() > apart_squared
-                })
-                .map(|(k, v)| FeaturePoint {
-                    point: origin + rotation * v,
-                    id: k + top * CAP_VERTICES as u32,
-                }),
-        );
+        let half = CAP_VERTICES / 2;
+        // Counter-clockwise from `first`, then clockwise from the vertex before it.
+        for counter_clockwise in [true, false] {
+            let side = |i: usize| match counter_clockwise {
+                true => first + i,
+                false => first + 2 * CAP_VERTICES - 1 - i,
+            };
+            // The side's vertices within the band, nearest first: an arc of the rim.
+            let (mut arc, mut len) = ([0; CAP_VERTICES / 2], 0);
+            for k in (0..half).map(side) {
+                if extreme - vertex(k).dot(&d) > band {
+                    break;
+                }
+                if (vertex(k) - lowest).norm_squared() > apart_squared {
+                    arc[len] = k;
+                    len += 1;
+                }
+            }
+            let arc = &arc[..len];
+            let picks = LANDING_POINTS_PER_SIDE.min(arc.len());
+            feature.landing.extend((1..=picks).map(|j| {
+                let k = arc[(arc.len() * j).div_ceil(picks) - 1] % CAP_VERTICES;
+                FeaturePoint {
+                    point: origin + rotation * vertex(k),
+                    id: k as u32 + top * CAP_VERTICES as u32,
+                }
+            }));
+        }
     }
 }
 
@@ -1049,9 +1083,12 @@ mod tests {
     }
 
     /// A cylinder touching with one point of its cap's rim (tilted past the feature angle,
-    /// about an axis off the body's axes) lands on the cap's other vertices within the band of
-    /// that point: each of them stands back by no more than the band, the rest by more, and the
-    /// rim point itself is not among them. A cap lying flat, a side line and a box have none.
+    /// about an axis off the body's axes) lands on cap vertices within the band of that point,
+    /// found here by brute force over the cap: on each side of the rim point, at most
+    /// [`LANDING_POINTS_PER_SIDE`] of them, the farthest within the band always among them,
+    /// and no run of the arc between two (or the rim point and the first) longer than its
+    /// share (`⌈m / 3⌉` of the side's `m` vertices). The arc's size follows the closed form
+    /// `R (1 − cos φ) sin θ ≤ band`. A cap lying flat, a side line and a box have none.
     #[test]
     fn a_cylinder_on_its_rim_lands_on_the_cap_vertices_within_the_band() {
         let angle = FeatureAngle::new(1f64.to_radians());
@@ -1069,7 +1106,8 @@ mod tests {
             feature
         };
         let axis = Vector3::new(1.0, 2.0, 0.0).normalize();
-        for tilt in [1.4f64, 3.0, 30.0] {
+        let spacing = std::f64::consts::TAU / CAP_VERTICES as f64;
+        for tilt in [1.4f64, 3.0, 10.0, 30.0, 60.0] {
             let rotation = UnitQuaternion::from_axis_angle(
                 &nalgebra::Unit::new_normalize(axis),
                 tilt.to_radians(),
@@ -1078,29 +1116,66 @@ mod tests {
             let [rim] = feature.points[..] else {
                 panic!("{tilt}°: one rim point, got {}", feature.points.len());
             };
-            // Every vertex of the bottom cap, with how far it stands back from the rim point.
+            // Angle round the cap from the rim point (body axes), signed by side.
+            let local = |p: &Point3<f64>| rotation.inverse_transform_vector(&(p - origin));
+            let rim_angle = local(&rim.point).y.atan2(local(&rim.point).x);
+            let around = |p: &Point3<f64>| {
+                let t = local(p).y.atan2(local(p).x) - rim_angle;
+                (t + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI
+            };
             let rise = |v: &Point3<f64>| (v - rim.point).dot(&-down);
-            let within: Vec<_> = cap_directions()
+            let vertices: Vec<_> = cap_directions()
                 .iter()
                 .map(|(cos, sin)| {
                     origin + rotation * Vector3::new(radius * cos, radius * sin, -half_height)
                 })
                 .filter(|v| rise(v) <= band && (v - rim.point).norm() > 1e-9)
                 .collect();
-            assert_eq!(feature.landing.len(), within.len(), "{tilt}°");
-            // The arc of the rim within the band: `R (1 − cos φ) sin θ ≤ band` either side of the
-            // rim point, over vertices 2π/64 apart.
             let arc = (1.0 - band / (radius * tilt.to_radians().sin())).acos();
-            let spacing = std::f64::consts::TAU / CAP_VERTICES as f64;
-            let sides = (arc / spacing).floor() as usize..=(arc / spacing).ceil() as usize;
-            assert!(
-                sides.contains(&(within.len() / 2)),
-                "{tilt}°: {} in the band",
-                within.len()
-            );
-            for (landing, vertex) in feature.landing.iter().zip(&within) {
-                assert!((landing.point - vertex).norm() < 1e-12, "{tilt}°");
-                assert!((0.0..=band).contains(&rise(&landing.point)), "{tilt}°");
+            for sign in [1.0, -1.0] {
+                let case = format!("{tilt}°, side {sign}");
+                let mut side: Vec<f64> = vertices
+                    .iter()
+                    .map(&around)
+                    .filter(|t| t * sign > 0.0)
+                    .map(f64::abs)
+                    .collect();
+                side.sort_by(f64::total_cmp);
+                let m = side.len();
+                let closed_form =
+                    (arc / spacing).floor() as usize..=(arc / spacing).ceil() as usize;
+                assert!(closed_form.contains(&m), "{case}: {m} in the band");
+                let mut picked: Vec<f64> = feature
+                    .landing
+                    .iter()
+                    .map(|l| around(&l.point))
+                    .filter(|t| t * sign > 0.0)
+                    .map(f64::abs)
+                    .collect();
+                picked.sort_by(f64::total_cmp);
+                assert_eq!(picked.len(), m.min(LANDING_POINTS_PER_SIDE), "{case}");
+                for t in &picked {
+                    assert!(
+                        side.iter().any(|s| (s - t).abs() < 1e-9),
+                        "{case}: {t} not in the band"
+                    );
+                }
+                if let (Some(last), Some(far)) = (picked.last(), side.last()) {
+                    assert!(
+                        (last - far).abs() < 1e-9,
+                        "{case}: the farthest is left out"
+                    );
+                }
+                let share = m.div_ceil(LANDING_POINTS_PER_SIDE) as f64 * spacing;
+                let mut from = 0.0;
+                for t in &picked {
+                    assert!(
+                        t - from <= share + spacing + 1e-9,
+                        "{case}: a run of {} rad",
+                        t - from
+                    );
+                    from = *t;
+                }
             }
         }
         // Flat within the feature angle: the cap is the feature, nothing to land on.
