@@ -414,13 +414,10 @@ mod tests {
     use super::*;
     use crate::{BEARING_DEPTH, ContactFrame, ContactModel, Landing, Material};
 
-    /// A 2 m square face of a frame tilted off the world's axes, with `depths` at its corners
-    /// (−1, −1), (1, −1), (1, 1), (−1, 1); the face model's rows of it between two bodies at
-    /// rest.
-    fn face_rows(depths: [f64; 4], dt: f64) -> (Contact, Problem<ContactProjection>) {
-        let square =
-            [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(x, y)| Point2::new(x, y));
-        let contact = Contact {
+    /// Bodies 0 and 1 touching through the polygon of `support` (plane coordinates of a frame
+    /// tilted off the world's axes) at `depths`, with `landing` points.
+    fn contact(support: &[Point2<f64>], depths: Vec<f64>, landing: Vec<Landing>) -> Contact {
+        Contact {
             body_a: BodyId(0),
             body_b: BodyId(1),
             centre_a: Point3::new(0.1, 0.2, 1.0),
@@ -430,18 +427,33 @@ mod tests {
                 Vector3::new(0.2, -0.3, 1.0),
             )
             .unwrap(),
-            support: ConvexPolygon::from_points(&square).unwrap(),
-            depths: depths.to_vec(),
+            support: ConvexPolygon::from_points(support).unwrap(),
+            depths,
             material: Material::new(0.5, 0.5, 0.0).unwrap(),
-            landing: Vec::new(),
-        };
+            landing,
+        }
+    }
+
+    /// The face model's rows of `contact` between two bodies at rest.
+    fn rows_of(
+        contact: &Contact,
+        dt: f64,
+    ) -> Result<Problem<ContactProjection>, crate::ContactError> {
         let mut problem = Problem {
             bodies: vec![SolverBody::fixed(); 2],
             ..Default::default()
         };
-        ContactModel::Face
-            .build(&contact, dt, &ContactSettings::default(), &mut problem)
-            .unwrap();
+        ContactModel::Face.build(contact, dt, &ContactSettings::default(), &mut problem)?;
+        Ok(problem)
+    }
+
+    /// A 2 m square face with `depths` at its corners (−1, −1), (1, −1), (1, 1), (−1, 1), and
+    /// its rows.
+    fn face_rows(depths: [f64; 4], dt: f64) -> (Contact, Problem<ContactProjection>) {
+        let square =
+            [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(x, y)| Point2::new(x, y));
+        let contact = contact(&square, depths.to_vec(), Vec::new());
+        let problem = rows_of(&contact, dt).unwrap();
         (contact, problem)
     }
 
@@ -493,28 +505,8 @@ mod tests {
             point: Point2::new(x, y),
             depth,
         });
-        let contact = Contact {
-            body_a: BodyId(0),
-            body_b: BodyId(1),
-            centre_a: Point3::new(0.1, 0.2, 1.0),
-            centre_b: Point3::new(-0.3, 0.1, -1.0),
-            frame: ContactFrame::from_normal(
-                Point3::new(0.5, -0.2, 0.1),
-                Vector3::new(0.2, -0.3, 1.0),
-            )
-            .unwrap(),
-            support: ConvexPolygon::from_points(&[Point2::new(0.0, 0.0)]).unwrap(),
-            depths: vec![deepest],
-            material: Material::new(0.5, 0.5, 0.0).unwrap(),
-            landing: landing.to_vec(),
-        };
-        let mut problem = Problem {
-            bodies: vec![SolverBody::fixed(); 2],
-            ..Default::default()
-        };
-        ContactModel::Face
-            .build(&contact, dt, &ContactSettings::default(), &mut problem)
-            .unwrap();
+        let contact = contact(&[Point2::new(0.0, 0.0)], vec![deepest], landing.to_vec());
+        let problem = rows_of(&contact, dt).unwrap();
         assert_eq!(problem.blocks.len(), 1 + landing.len());
         for block in &problem.blocks {
             assert!(matches!(block.projection, ContactProjection::Point(_)));
@@ -532,11 +524,7 @@ mod tests {
         // A non-finite landing point is refused, as a non-finite depth is.
         let mut bad = contact.clone();
         bad.landing[1].point.x = f64::NAN;
-        let mut problem = Problem {
-            bodies: vec![SolverBody::fixed(); 2],
-            ..Default::default()
-        };
-        let refused = ContactModel::Face.build(&bad, dt, &ContactSettings::default(), &mut problem);
+        let refused = rows_of(&bad, dt);
         assert!(matches!(
             refused,
             Err(crate::ContactError::NonFinite {
