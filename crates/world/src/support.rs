@@ -13,6 +13,9 @@
 //! plane through its points. With the box's feature, these took collision on one thread from
 //! 3.6–3.9 to 2.9–3.2 ms a step on the 1000-cube pile and from 8.1–9.1 to 5.9–6.6 ms on the
 //! 1000 mixed shapes (cylinder caps of 64 points no longer go through a hull and a fit).
+//! Under the face model a cylinder resting on one point of its cap's rim also gives the cap
+//! vertices beside that point within the margin, with their gaps over the other feature's
+//! face, as the contact's landing points ([`Outline::landing`]).
 //!
 //! Under the vertex and patch models, which carry their rows' impulses from step to step by the
 //! vertex they act at, every vertex of the result carries a [`FeatureId`] ([`VertexIds`]; the
