@@ -4,19 +4,18 @@ use std::ops::Range;
 use std::time::Instant;
 
 use nalgebra::Vector3;
-use tatami_contact::{Contact, ContactModel, ContactProjection};
+use tatami_contact::{Contact, ContactProjection};
 use tatami_lcp::direct::{self, DirectInfo};
 use tatami_lcp::pgs::{self, PgsParams, PgsWorkspace, Record, Support, WarmStart};
 use tatami_lcp::{DisjointSets, LcpError, Problem, Row, SolverBody};
 
 use crate::body::{BodyKind, Motion};
-use crate::carry::CarryBounds;
 use crate::collision::{self, BodyGeometry, CollisionSettings, CollisionWorkspace};
 use crate::contact_set::ContactSet;
 use crate::parallel;
 use crate::parry_bridge::Collider;
 use crate::sleep::Islands;
-use crate::support::{Outline, VertexIds};
+use crate::support::Outline;
 use crate::{
     Body, BodyDesc, BodyId, Solver, StepError, StepTimings, WorldBuilder, WorldError, WorldSettings,
 };
@@ -318,25 +317,7 @@ impl World {
 
     /// Collision: the contact set brought to the current positions, highest contact first.
     fn detect(&mut self) {
-        let settings = &self.settings;
-        let ids = VertexIds::for_model(settings.model);
-        // Only contacts whose vertices go unnamed (the face model's) are carried: the named
-        // models' rows are warm-started vertex by vertex, and carried contacts let the patch
-        // model's leaning stack drift 2.6 mm (0.4 mm found afresh; its bound is 1 mm).
-        let carry = (ids == VertexIds::Unnamed).then(|| {
-            CarryBounds::new(
-                settings.contact.slop,
-                settings.feature_angle,
-                settings.contact_margin,
-            )
-        });
-        let collision = CollisionSettings {
-            margin: settings.contact_margin,
-            feature_angle: settings.feature_angle,
-            ids,
-            carry,
-            landing: settings.model == ContactModel::Face,
-        };
+        let collision = CollisionSettings::of(&self.settings);
         collision::detect(
             &self.bodies,
             &self.geometry,
