@@ -329,6 +329,13 @@ impl World {
     }
 
     /// Contact rows from the velocities at the start of the step, then gravity's impulse.
+    ///
+    /// On one thread, in the contact set's order. Building them on both cores was measured: runs
+    /// of 16 contacts, each built into buffers of its own and then appended with their blocks'
+    /// row ranges shifted, cost as much in the copy as the second core saved (the 1000-cube
+    /// pile's row stage 0.94–0.97 ms on two threads against 0.88–0.93 ms here, and 1.23–1.29 ms
+    /// against 0.84–0.92 ms on one): a row and its block are a few hundred bytes, and the build
+    /// of a face, about 0.3 µs, does little more than write them.
     fn build_problem(&mut self, dt: f64) -> Result<(), StepError> {
         let problem = &mut self.problem;
         problem.bodies.clear();
