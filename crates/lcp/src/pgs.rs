@@ -545,7 +545,9 @@ fn stays_unloaded<P: Projection>(
 /// see [`solve_factored`]); `None` if `K` is not positive definite. Factored once per solve, it
 /// costs two triangular solves per update. Forming `K⁻¹` instead (one 6 × 6 product per update)
 /// took 9% off a cold-started tower's 15 sweeps but made the warm-started tower's step 20%
-/// slower, where a block takes one or two whole steps a solve.
+/// slower, where a block takes one or two whole steps a solve; measured again against the
+/// divisionless solves, with nalgebra's `Cholesky::inverse`, every `general_comparison` scene
+/// was slower (the tower's step by 37%, the piles' velocity solve by 4–8%).
 fn whole_block_factor<P: Projection>(
     problem: &Problem<P>,
     workspace: &PgsWorkspace,
@@ -577,9 +579,10 @@ fn factor_for_solves(k: Matrix6<f64>) -> Option<Matrix6<f64>> {
 }
 
 /// Solves `K x = b` in place, given `L` of `K` with its diagonal inverted
-/// ([`factor_for_solves`]): `L y = b`, then `Lᵀ x = y`, multiplying by `1/Lᵢᵢ` where the textbook divides by
-/// `Lᵢᵢ`. The twelve divisions sat one after the other on the update's dependency chain; without
-/// them the 1000-cube pile's velocity solve took 8% less (one thread, three interleaved runs).
+/// ([`factor_for_solves`]): `L y = b`, then `Lᵀ x = y`, multiplying by `1/Lᵢᵢ` where the
+/// textbook divides by `Lᵢᵢ`. Those twelve divisions sat one after the other on the update's
+/// dependency chain; without them the piles' velocity solve took 6–8% less (the
+/// `general_comparison` bench, three interleaved pairs of runs, on one thread and on two).
 fn solve_factored(factor: &Matrix6<f64>, b: &mut Vector6<f64>) {
     for i in 0..WHOLE_BLOCK_ROWS {
         let mut x = b[i];
@@ -963,10 +966,10 @@ mod tests {
 
     proptest! {
         /// The solve with the inverted diagonal against nalgebra's Cholesky solve, on symmetric
-        /// positive definite `K = M Mᵀ + I/10` (every eigenvalue ≥ 0.1, entries up to 36, so a
-        /// condition number below 400) and on a 3-row block padded with the identity. Both are
-        /// backward stable, so they differ by about the condition number times the rounding,
-        /// below 1e-13 of the answer's largest entry: 1e-12 leaves room.
+        /// positive definite `K = M Mᵀ + I/10` with `M`'s entries within ±1 (eigenvalues from
+        /// 0.1 to 36.1, a condition number below 400), whole and as a 3-row block padded with
+        /// the identity. Both are backward stable, so they differ by about the condition number
+        /// times the rounding, below 1e-13 of the answer's largest entry: 1e-12 leaves room.
         #[test]
         fn solves_as_the_textbook_cholesky_does(
             m in proptest::collection::vec(-1.0..1.0f64, 36),
