@@ -16,11 +16,15 @@
 //! skipped, with the same result as testing it. An edge–edge axis turns with both bodies and is
 //! not kept.
 //!
-//! A pair with a ball or a cylinder is decided by parry's GJK, which reports a contact only
-//! within the margin. When it finds none, the face planes of either shape (a polytope's faces,
-//! a cylinder's caps) are measured against the other's support function: such a separation is
-//! at most the shapes' distance, so the same bound keeps the pair apart. Two balls keep the gap
-//! between them, which follows their centres.
+//! Nothing in the bound needs the axis to be a face normal: any axis fixed in the owner's frame
+//! serves, as long as the separation along it is measured against the true shapes. A pair with
+//! a ball or a cylinder is decided by parry's GJK, which reports a contact only within the
+//! margin. When it finds none, the face planes of either shape (a polytope's faces, a
+//! cylinder's caps) are measured against the other's support function, and where none shows
+//! the pair apart, so is GJK's separating direction (or a ball's direction from the other
+//! shape's nearest point): each such separation is at most the shapes' distance, so the same
+//! bound keeps the pair apart. Two balls keep the gap between them, which follows their
+//! centres.
 
 use nalgebra::UnitQuaternion;
 
@@ -31,12 +35,13 @@ use crate::contact_set::Pose;
 /// size, each within about 1e-15 of it, so 1e-9 leaves a factor of a million.
 const ROUNDING: f64 = 1e-9;
 
-/// A face normal of one body along which a pair is separated beyond the margin.
+/// An axis fixed in one body (a face normal, or a curved pair's separating direction) along
+/// which a pair is separated beyond the margin.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct FaceGap {
-    /// The separation along the face normal (m), above the margin.
+pub(crate) struct AxisGap {
+    /// The separation along the axis (m), above the margin.
     pub separation: f64,
-    /// Whether the face is the first body's (the first shape given to the test).
+    /// Whether the axis is the first body's (the first shape given to the test).
     pub on_first: bool,
 }
 
@@ -51,10 +56,10 @@ pub(crate) struct Placement {
     pub reach: f64,
 }
 
-/// A pair found apart along a face normal, with the poses it was found at.
+/// A pair found apart along an axis, with the poses it was found at.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Apart {
-    pub gap: FaceGap,
+    pub gap: AxisGap,
     pub poses: [Pose; 2],
 }
 
@@ -92,7 +97,7 @@ fn turn_bound(now: &UnitQuaternion<f64>, was: &UnitQuaternion<f64>) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::parry_bridge::tests::uniform_from;
+    use crate::parry_bridge::tests::{sharp_distance, uniform_from};
     use crate::parry_bridge::{Collider, contact_normal, pose};
     use crate::shape::Shape;
     use nalgebra::{Point3, Unit, Vector3};
@@ -138,10 +143,14 @@ mod tests {
         }
     }
 
-    /// Pairs of boxes, hulls, balls and cylinders, turned at random and found apart along a
-    /// face normal (or, for two balls, by their gap), then each body moved by up to half the gap and turned by up to 0.1 rad (or not): every pair the
-    /// bound keeps apart is found apart again by the separating-axis tests, and the bound keeps
-    /// a good share of them (it is not vacuous).
+    /// Pairs of boxes, hulls, balls and cylinders, turned at random and found apart along an
+    /// axis (or, for two balls, by their gap), then each body moved by up to half the gap and
+    /// turned by up to 0.1 rad (or not): every pair the bound keeps apart is farther apart than
+    /// the margin (parry's distance query), a pair without a cylinder is found apart again by
+    /// the same tests, and the bound keeps a good share of them (it is not vacuous). A pair
+    /// with a cylinder may not be: its normal is searched on rounded cores within more than
+    /// the margin, and the contact found there is dropped later, by its depths
+    /// ([`Collider::is_rounded`]).
     #[test]
     fn a_pair_the_bound_keeps_apart_is_found_apart() {
         let mut uniform = uniform_from(31);
@@ -168,6 +177,7 @@ mod tests {
                 &b,
                 &pose(&centre_b, &turn_b),
                 margin,
+                None,
             ) else {
                 continue;
             };
@@ -192,14 +202,19 @@ mod tests {
             );
             if apart.still_apart(&now_a, &now_b, margin) {
                 kept += 1;
-                let normal = contact_normal(
-                    &a,
-                    &pose(&now_a.pose.0, &now_a.pose.1),
-                    &b,
-                    &pose(&now_b.pose.0, &now_b.pose.1),
-                    margin,
+                let (pose_a, pose_b) = (
+                    pose(&now_a.pose.0, &now_a.pose.1),
+                    pose(&now_b.pose.0, &now_b.pose.1),
                 );
-                assert!(normal.is_err(), "case {case}: kept apart, but touching");
+                let distance = sharp_distance(&a, &pose_a, &b, &pose_b);
+                assert!(
+                    distance > margin,
+                    "case {case}: kept apart {distance} m apart"
+                );
+                if !(a.is_rounded() || b.is_rounded()) {
+                    let normal = contact_normal(&a, &pose_a, &b, &pose_b, margin, None);
+                    assert!(normal.is_err(), "case {case}: kept apart, but touching");
+                }
             }
         }
         assert!(found > 10_000, "only {found} pairs found apart");
@@ -269,6 +284,7 @@ mod tests {
                     second.0,
                     &pose(&second.1.0, &second.1.1),
                     margin,
+                    None,
                 ) else {
                     panic!("apart along a face normal");
                 };

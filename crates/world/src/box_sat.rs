@@ -18,7 +18,7 @@ use parry3d_f64::math::{Pose, Vector};
 use parry3d_f64::query::sat as parry_sat;
 use parry3d_f64::shape::Cuboid;
 
-use crate::apart::FaceGap;
+use crate::apart::AxisGap;
 
 /// Relative gap, as a fraction of the pair's size (`|t|₁ + |h₁|₁ + |h₂|₁`), within which a
 /// quick separation may differ from parry's: both sum at most seven terms bounded by that size,
@@ -35,7 +35,7 @@ pub(crate) fn cuboid_normal(
     box2: &Cuboid,
     pos12: &Pose,
     prediction: f64,
-) -> Result<Vector, Option<FaceGap>> {
+) -> Result<Vector, Option<AxisGap>> {
     let faces = face_separations(box1, box2, pos12);
     quick_normal(box1, box2, pos12, prediction, &faces)
         .unwrap_or_else(|| parry_normal(box1, box2, pos12, prediction))
@@ -45,11 +45,11 @@ pub(crate) fn cuboid_normal(
 /// The face normal of either box separating the pair most, if it does by more than
 /// `prediction`. parry answers `None` for any such pair: its face groups report the best face's
 /// separation, or one at least as large along a blend of separating faces.
-fn face_gap(separations: &[f64; 6], prediction: f64) -> Option<FaceGap> {
+fn face_gap(separations: &[f64; 6], prediction: f64) -> Option<AxisGap> {
     let (best, separation) = (0..6)
         .map(|k| (k, separations[k]))
         .reduce(|best, next| if next.1 > best.1 { next } else { best })?;
-    (separation > prediction).then_some(FaceGap {
+    (separation > prediction).then_some(AxisGap {
         separation,
         on_first: best < 3,
     })

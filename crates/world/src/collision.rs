@@ -2,8 +2,8 @@
 //! written into the persistent [`ContactSet`]. Plain data in, the set out, so it can be run and
 //! timed alone; a pair neither of whose bodies moved keeps its contact, one whose bodies barely
 //! slid or turned against each other has it carried with them (see [`ContactSet::refresh`],
-//! [`crate::carry`]), and a pair found apart along a face normal is not tested again while its
-//! bodies could not have closed the gap ([`crate::apart`]).
+//! [`crate::carry`]), and a pair found apart along an axis fixed in one body is not tested again
+//! while its bodies could not have closed the gap ([`crate::apart`]).
 
 use nalgebra::Vector3;
 use tatami_contact::{Contact, ContactModel, Material};
@@ -14,7 +14,7 @@ use crate::apart::{Apart, Placement};
 use crate::body::Body;
 use crate::broad_phase::SweepAndPrune;
 use crate::carry::CarryBounds;
-use crate::contact_set::{Computed, ContactSet};
+use crate::contact_set::{Computed, ContactSet, Recycled};
 use crate::parallel;
 use crate::parry_bridge::{self, Collider};
 use crate::support::{Feature, FeatureAngle, Outline, VertexIds, support};
@@ -67,10 +67,10 @@ const PARALLEL_PASS: usize = 256;
 enum Found {
     /// Its contact.
     Touching(Computed),
-    /// Apart along a face normal: kept apart, untested, until its bodies could have closed the
+    /// Apart along an axis of one body: kept apart, untested, until its bodies could have closed the
     /// gap ([`ContactSet::keep_apart`]).
     Apart(Apart),
-    /// No contact, and no face normal to keep the pair apart by (or not found yet).
+    /// No contact, and no axis to keep the pair apart by (or not found yet).
     Nothing,
 }
 
@@ -160,7 +160,7 @@ pub(crate) fn detect(
             .map(|b| parry_bridge::pose(&b.position(), &b.rotation)),
     );
     let poses = &*poses;
-    let find = |features: &mut Features, pair: (usize, usize), depths: Vec<f64>| {
+    let find = |features: &mut Features, pair: (usize, usize), recycled: Recycled| {
         contact_of(
             bodies,
             geometry,
@@ -170,7 +170,7 @@ pub(crate) fn detect(
             &feature_angle,
             ids,
             features,
-            depths,
+            recycled,
         )
     };
     placements.clear();
@@ -183,8 +183,8 @@ pub(crate) fn detect(
         }
     }));
     let placements = &*placements;
-    let compute = |features: &mut Features, pair: (usize, usize), depths: Vec<f64>| match find(
-        features, pair, depths,
+    let compute = |features: &mut Features, pair: (usize, usize), recycled: Recycled| match find(
+        features, pair, recycled,
     ) {
         Found::Touching(computed) => Some(computed),
         Found::Apart(_) | Found::Nothing => None,
@@ -222,7 +222,7 @@ pub(crate) fn detect(
     );
     *last_computed = recomputed + new.len();
     let compute_into = |features: &mut Features, (pair, out): &mut ((usize, usize), _)| {
-        *out = find(features, *pair, Vec::new());
+        *out = find(features, *pair, Recycled::default());
     };
     if new.len() >= PARALLEL_PAIRS {
         parallel::for_each(new, Features::default, compute_into);
@@ -243,12 +243,12 @@ pub(crate) fn detect(
 
 /// The contact of pair `(i, j)` at the bodies' current poses, with its feature ids (if `ids`
 /// asks) and the poses it was computed at; or, when the bodies are farther apart than `margin`,
-/// the face normal that shows it if one does. The contact's depths go into `depths` (see
-/// [`support`]). Its landing points are those standing back by at most `landing_band` (m; 0
-/// for none).
+/// the axis that shows it if one does. The contact's depths go into `recycled.depths`
+/// (see [`support`]), and its normal is searched for from `recycled.normal`. Its landing
+/// points are those standing back by at most `landing_band` (m; 0 for none).
 #[expect(
     clippy::too_many_arguments,
-    reason = "the pass's read-only inputs, the thread's scratch and the recycled buffer"
+    reason = "the pass's read-only inputs, the thread's scratch and what the old contact left"
 )]
 fn contact_of(
     bodies: &[Body],
@@ -259,7 +259,10 @@ fn contact_of(
     feature_angle: &FeatureAngle,
     ids: VertexIds,
     features: &mut Features,
-    depths: Vec<f64>,
+    Recycled {
+        depths,
+        normal: hint,
+    }: Recycled,
 ) -> Found {
     let (a, b) = (&bodies[i], &bodies[j]);
     let found_at = [(a.centre, a.rotation), (b.centre, b.rotation)];
@@ -269,6 +272,7 @@ fn contact_of(
         &geometry[j].collider,
         &poses[j],
         margin,
+        hint.as_ref(),
     ) {
         Ok(normal) => normal,
         Err(Some(gap)) => {
@@ -415,7 +419,7 @@ mod tests {
                         &angle,
                         VertexIds::for_model(world.settings.model),
                         &mut features,
-                        Vec::new(),
+                        Recycled::default(),
                     );
                     assert!(
                         !matches!(found, Found::Touching(_)) || held.contains(&(i, j)),
@@ -466,7 +470,7 @@ mod tests {
                     &angle,
                     VertexIds::for_model(world.settings.model),
                     &mut features,
-                    Vec::new(),
+                    Recycled::default(),
                 );
                 let Found::Touching((fresh, _, _)) = found else {
                     assert!(

@@ -8,7 +8,7 @@
 //! a pass, [`refresh`](ContactSet::refresh)es the pairs it holds (keeping the contact of one
 //! that has not moved, recomputing the others in place, on every core) while the broad phase
 //! [`meet`](Meeting::meet)s each overlapping pair, [`insert`](ContactSet::insert)s new ones,
-//! [`keep_apart`](ContactSet::keep_apart)s the new pairs found apart along a face normal (they
+//! [`keep_apart`](ContactSet::keep_apart)s the new pairs found apart along an axis (they
 //! are met, untested, while their bodies could not have closed the gap: [`crate::apart`]),
 //! and [`end`](ContactSet::end)s the pass, which is where pairs no longer touching or no longer
 //! met are dropped; rows are built in set order, each pair
@@ -57,6 +57,16 @@ pub(crate) type Pose = (Point3<f64>, UnitQuaternion<f64>);
 /// A pair's contact as collision computes it: the contact, a feature id per support vertex, and
 /// the poses of the two bodies it was computed at.
 pub(crate) type Computed = (Contact, FeatureIds, [Pose; 2]);
+
+/// What a pair's old contact leaves the one computed to replace it.
+#[derive(Debug, Default)]
+pub(crate) struct Recycled {
+    /// Its depths buffer, for the new contact's depths.
+    pub depths: Vec<f64>,
+    /// Its normal, from B into A: where the search for the new one starts
+    /// ([`crate::parry_bridge::contact_normal`]'s hint). `None` for a pair not held.
+    pub normal: Option<Vector3<f64>>,
+}
 
 /// A pair of bodies, `(a, b)` with `a < b`.
 type Pair = (usize, usize);
@@ -178,7 +188,7 @@ pub(crate) struct ContactSet {
     held: Vec<(Pair, usize)>,
     /// Whether the current collision pass's broad phase met each entry's pair.
     met: Vec<bool>,
-    /// Pairs the broad phase meets that were last found apart along a face normal, each with
+    /// Pairs the broad phase meets that were last found apart along an axis, each with
     /// whether the current pass met it (see [`crate::apart`]); sorted by pair after
     /// [`ContactSet::end`].
     apart: Vec<KeptApart>,
@@ -232,8 +242,8 @@ impl ContactSet {
     /// body is), so a resting stack's pairs are computed once; a pair whose bodies barely slid
     /// or turned against each other keeps it carried with them, within the bounds given to
     /// [`ContactSet::begin`] ([`carry`]); the others
-    /// are recomputed in place by `compute` (from a per-thread `scratch`, and given the old
-    /// contact's depths buffer to fill), and a pair it returns
+    /// are recomputed in place by `compute` (from a per-thread `scratch`, and given what the old
+    /// contact leaves the new one: [`Recycled`]), and a pair it returns
     /// `None` for (no longer touching) is dropped by [`ContactSet::end`], as is a pair the broad
     /// phase did not meet.
     ///
@@ -249,7 +259,7 @@ impl ContactSet {
         on_every_core: bool,
         placements: &[Placement],
         scratch: fn() -> S,
-        compute: impl Fn(&mut S, (usize, usize), Vec<f64>) -> Option<Computed> + Sync,
+        compute: impl Fn(&mut S, (usize, usize), Recycled) -> Option<Computed> + Sync,
         broad_phase: impl FnOnce(&mut Meeting<'_>),
     ) -> usize {
         let still = |was: &Pose, now: Placement| {
@@ -279,10 +289,12 @@ impl ContactSet {
                 entry.state.touching = true;
                 return false;
             }
-            // The old contact's depths buffer is handed over for the new one's (a pair no longer
-            // touching is left without depths until `end` drops it).
-            let depths = std::mem::take(&mut entry.contact.depths);
-            entry.state.touching = match compute(scratch, pair, depths) {
+            // A pair no longer touching is left without depths until `end` drops it.
+            let recycled = Recycled {
+                depths: std::mem::take(&mut entry.contact.depths),
+                normal: Some(entry.contact.frame.normal),
+            };
+            entry.state.touching = match compute(scratch, pair, recycled) {
                 Some((contact, features, poses)) => {
                     entry.contact = contact;
                     entry.state.features = features;

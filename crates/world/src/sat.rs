@@ -12,7 +12,7 @@
 
 use nalgebra::{UnitQuaternion, Vector3};
 
-use crate::apart::FaceGap;
+use crate::apart::AxisGap;
 
 /// A convex polytope in its own frame.
 #[derive(Debug, Clone, PartialEq)]
@@ -99,7 +99,7 @@ pub(crate) fn separating_axis(
     rotation: &UnitQuaternion<f64>,
     translation: &Vector3<f64>,
     prediction: f64,
-) -> Result<(f64, Vector3<f64>), Option<FaceGap>> {
+) -> Result<(f64, Vector3<f64>), Option<AxisGap>> {
     let mut best = (f64::NEG_INFINITY, Vector3::z());
     let mut consider = |separation: f64, axis: Vector3<f64>| {
         if separation > best.0 {
@@ -112,7 +112,7 @@ pub(crate) fn separating_axis(
         let in_b = rotation.inverse_transform_vector(&-n);
         let separation = -b.support(&in_b) + n.dot(translation) - d;
         if !consider(separation, *n) {
-            return Err(Some(FaceGap {
+            return Err(Some(AxisGap {
                 separation,
                 on_first: true,
             }));
@@ -123,7 +123,7 @@ pub(crate) fn separating_axis(
     for (axis, (_, e)) in b_normals.iter().zip(&b.faces) {
         let separation = -a.support(axis) + axis.dot(translation) - e;
         if !consider(separation, *axis) {
-            return Err(Some(FaceGap {
+            return Err(Some(AxisGap {
                 separation,
                 on_first: false,
             }));
