@@ -390,7 +390,7 @@ mod tests {
     /// 48 mixed shapes (boxes, balls, cylinders, hulls) dropped in a heap: after every step's
     /// collision pass, every pair that a fresh test finds touching is in the contact set — the
     /// pairs kept apart without a test (see [`crate::apart`]) hide none — while the set keeps
-    /// many pairs apart (about 21 a step).
+    /// many pairs apart (about 24 a step).
     #[test]
     fn no_touching_pair_is_kept_apart() {
         let mut world = dropped_heap(11, 48, |k| k);
@@ -429,7 +429,7 @@ mod tests {
             }
             world.step(dt).expect("a step");
         }
-        // About 21 a step; half as many without the balls and cylinders kept apart.
+        // About 24 a step; half as many without the balls and cylinders kept apart.
         assert!(kept_apart >= 4_000, "{kept_apart} pairs kept apart in all");
     }
 
