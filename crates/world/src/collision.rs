@@ -67,8 +67,8 @@ const PARALLEL_PASS: usize = 256;
 enum Found {
     /// Its contact.
     Touching(Computed),
-    /// Apart along an axis of one body: kept apart, untested, until its bodies could have closed the
-    /// gap ([`ContactSet::keep_apart`]).
+    /// Apart along an axis of one body: kept apart, untested, until its bodies could have
+    /// closed the gap ([`ContactSet::keep_apart`]).
     Apart(Apart),
     /// No contact, and no axis to keep the pair apart by (or not found yet).
     Nothing,

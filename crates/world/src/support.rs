@@ -1047,7 +1047,8 @@ mod tests {
             }
             let ends = [Point3::new(-half, 0.2, 0.0), Point3::new(half, 0.2, 2.0 * half * edge_slope)];
             let edge: Vec<_> = numbered(ends.map(|p| centre + twist * p.coords).to_vec());
-            let by_line = Surface::fit(&frame, &fitted(&edge), VertexIds::Unnamed, Side::A).unwrap();
+            let by_line =
+                Surface::fit(&frame, &fitted(&edge), VertexIds::Unnamed, Side::A).unwrap();
             let plane: Vec<_> = edge.iter().map(|f| frame.to_plane(&f.point)).collect();
             let heights = edge.iter().map(|f| (f.point - frame.origin).dot(&frame.normal));
             let hull = ConvexPolygon::from_points(&plane).unwrap();
