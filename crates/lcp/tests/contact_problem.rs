@@ -319,6 +319,33 @@ fn malformed_blocks_are_rejected() {
     );
 }
 
+/// A problem with a non-finite row and a malformed block is reported by whichever comes first
+/// in block order, and a row no block covers is a malformed block past the last.
+#[test]
+fn the_first_offending_block_is_named() {
+    let nan_in = |block: usize, malformed: usize| {
+        let mut problem = cube_on_ground(Vector3::zeros(), 0.5);
+        let row = problem.blocks[block].rows.start;
+        problem.rows[row].jacobian.angular_a.y = f64::NAN;
+        problem.blocks[malformed].body_b = BodyId(9);
+        problem.validate().unwrap_err()
+    };
+    assert_eq!(nan_in(1, 3), LcpError::NonFinite { block: 1 });
+    assert_eq!(nan_in(3, 1), LcpError::MalformedBlock { block: 1 });
+    assert_eq!(nan_in(2, 2), LcpError::MalformedBlock { block: 2 });
+    let mut uncovered = cube_on_ground(Vector3::zeros(), 0.5);
+    uncovered.blocks.pop();
+    assert_eq!(
+        uncovered.validate().unwrap_err(),
+        LcpError::MalformedBlock { block: 3 }
+    );
+    uncovered.rows.last_mut().unwrap().impulse = f64::INFINITY;
+    assert_eq!(
+        uncovered.validate().unwrap_err(),
+        LcpError::MalformedBlock { block: 3 }
+    );
+}
+
 /// Random bodies and one-row blocks with constant box bounds: one-row blocks make the block
 /// projection a per-row clamp, which is exactly what the dense PGS does.
 fn random_problem() -> impl Strategy<Value = Problem<BoundsProjection>> {
