@@ -25,10 +25,24 @@
 //! landing points ([`Contact::landing`]: a cylinder's rim beside the one rim point it rests on)
 //! get the same blocks, so the rim's lowest point can run round it as the cylinder wobbles
 //! without the rim beside it sinking in (1 cm before, at 60 Hz).
+//!
+//! A support *tipping* about its centre gets landing blocks too. The block's normal row holds
+//! `G`, so while its tilt is at the bound (the centre of pressure at an edge, or at a segment's
+//! end) nothing holds that edge: the body turns about `G` and the edge sinks by its distance
+//! from `G` times the tipping rate in a step. A 1 m cube lying on the floor and tipping at
+//! 3 rad/s sank an edge 19 mm in one step at 60 Hz, a cylinder on its side 16 mm, where the
+//! vertex model held them. So each vertex of the bearing part that the bodies' relative turn
+//! at the step's start would sink below `G` by more than the slop within the step gets a
+//! landing block, which lets it come down to the support's deepest level and no further: its
+//! normal row carries the impulse that pivots the body about that edge (the cube and the
+//! cylinder: within 0.2 mm of their start, as the vertex model; the turn after the impact as
+//! the closed form's). A resting or sliding support's vertices move with `G` and get none; a
+//! quarter of the slop instead of the whole let more of them through on a settling pile of
+//! mixed shapes and left more deep contacts in it.
 
-use nalgebra::{Point2, Vector3};
+use nalgebra::{Point2, Vector2, Vector3};
 use tatami_geometry::{ConvexPolygon, PolygonKind, Sector};
-use tatami_lcp::{Block, LinearSet, Problem, Projection, Row, RowBound};
+use tatami_lcp::{Block, LinearSet, Problem, Projection, Row, RowBound, SolverBody};
 
 use crate::bearing::{bearing_depth, bearing_part};
 use crate::jacobian::{angular_jacobian, point_jacobian, point_motion, twist_rate};
@@ -276,8 +290,8 @@ fn bearing_of_checked(
 /// for a segment the 5-row block of [`crate::segment`] (but with the parallel-torque variant,
 /// which reads both tilts), for a point support the vertex model's 3-row block (see the module
 /// doc); then, when that part is not all of the polygon, a landing block for each vertex off
-/// it, and one for each of the contact's landing points ([`Contact::landing`]). The contact
-/// must be validated.
+/// it; one for each vertex of that part a tipping support sinks (module doc); and one for each
+/// of the contact's landing points ([`Contact::landing`]). The contact must be validated.
 pub(crate) fn build(
     contact: &Contact,
     dt: f64,
@@ -304,13 +318,44 @@ pub(crate) fn build(
             }
         }
     }
-    // Landing points beside the support (a rim beside its lowest point): each may come down to
-    // the support's deepest level in this step and no further.
+    // The vertices of the bearing part that a tipping support sinks, and the contact's landing
+    // points beside its support (a rim beside its lowest point; module doc): each may come
+    // down to the support's deepest level in this step and no further.
     let deepest = contact.depth();
-    for landing in &contact.landing {
-        let gap = (landing.depth - deepest).min(0.0);
-        vertex::build_point(contact, &landing.point, gap, dt, settings, problem, biases);
+    let tipping = tipping_vertices(
+        bearing.as_ref().unwrap_or(contact),
+        &problem.bodies,
+        dt,
+        settings,
+    );
+    let landing = contact.landing.iter().map(|l| (&l.point, &l.depth));
+    for (point, &depth) in tipping.chain(landing) {
+        let gap = (depth - deepest).min(0.0);
+        vertex::build_point(contact, point, gap, dt, settings, problem, biases);
     }
+}
+
+/// The vertices of `contact`'s support (with their depths) that the bodies' relative turn
+/// would sink below the support's centroid by more than the slop in a step of `dt`, at the
+/// rates the step starts with: a support tipping about its centre (module doc). A resting
+/// support's vertices move with its centre to within micrometres a step.
+fn tipping_vertices<'a>(
+    contact: &'a Contact,
+    bodies: &[SolverBody],
+    dt: f64,
+    settings: &ContactSettings,
+) -> impl Iterator<Item = (&'a Point2<f64>, &'a f64)> + use<'a> {
+    let (a, b) = (&bodies[contact.body_a.0], &bodies[contact.body_b.0]);
+    let frame = &contact.frame;
+    let turn = a.angular_velocity - b.angular_velocity;
+    let centre = contact.support.centroid();
+    // A vertex at `r` from the centre sinks at −((ω_A − ω_B) × r) · n = −(n × (ω_A − ω_B)) · r
+    // relative to it: a gradient in the plane.
+    let gradient = frame.normal.cross(&turn);
+    let gradient = Vector2::new(gradient.dot(&frame.tangent1), gradient.dot(&frame.tangent2));
+    let limit = settings.slop;
+    (contact.support.vertices().iter().zip(&contact.depths))
+        .filter(move |(vertex, _)| -gradient.dot(&(*vertex - centre)) * dt > limit)
 }
 
 /// [`build`] on a contact that bears on all of its support polygon.
@@ -485,6 +530,83 @@ mod tests {
         }
         let (_, flat) = face_rows([0.001, 0.0008, 0.0007, 0.0009], dt);
         assert_eq!(flat.blocks.len(), 1, "bears on all of it");
+    }
+
+    /// A face tipping: A turns against B about an axis in the plane, off the frame's tangents,
+    /// so the corners on one side sink faster than the centre. Each corner the turn sinks by
+    /// more than the slop within the step gets a landing block at its own level (target 0 on a
+    /// flat face), after the face's block; the corners rising, or sinking by less, get none.
+    /// Turned about the normal (twist), slid along the plane or pushed along the normal as a
+    /// whole, the face gets its block alone. Same for a segment, whose ends are its vertices.
+    #[test]
+    fn a_tipping_support_gets_a_landing_block_at_each_vertex_it_sinks() {
+        let dt = 0.01;
+        let square =
+            [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(x, y)| Point2::new(x, y));
+        let flat = contact(&square, vec![0.001; 4], Vec::new());
+        let frame = flat.frame;
+        let blocks_with = |contact: &Contact, linear: Vector3<f64>, angular: Vector3<f64>| {
+            let mut a = SolverBody::fixed();
+            a.inv_mass = 1.0;
+            a.linear_velocity = linear;
+            a.angular_velocity = angular;
+            let mut problem = Problem {
+                bodies: vec![a, SolverBody::fixed()],
+                ..Default::default()
+            };
+            (ContactModel::Face.build(contact, dt, &ContactSettings::default(), &mut problem))
+                .unwrap();
+            problem
+        };
+        // A turn about in-plane axis (1, 2)/√5: a corner at r sinks at ω·((1, 2)/√5 × r)·n.
+        let slop = ContactSettings::default().slop;
+        let axis = (frame.tangent1 + frame.tangent2 * 2.0) / 5f64.sqrt();
+        let sink_rate = |corner: &Point2<f64>| {
+            let r = frame.tangent1 * corner.x + frame.tangent2 * corner.y;
+            -axis.cross(&r).dot(&frame.normal)
+        };
+        for rate in [0.5, 2.0] {
+            let problem = blocks_with(&flat, Vector3::zeros(), axis * rate);
+            let sinking: Vec<_> = (flat.support.vertices().iter())
+                .filter(|c| rate * sink_rate(c) * dt > slop)
+                .collect();
+            assert!(
+                !sinking.is_empty() && sinking.len() < 4,
+                "{rate}: {sinking:?}"
+            );
+            assert_eq!(problem.blocks.len(), 1 + sinking.len(), "{rate}");
+            for (block, corner) in problem.blocks[1..].iter().zip(&sinking) {
+                assert!(matches!(block.projection, ContactProjection::Point(_)));
+                let normal = &problem.rows[block.rows.start];
+                let arm = frame.to_world(corner) - flat.centre_a;
+                let j = &normal.jacobian;
+                assert!((j.angular_a - arm.cross(&j.linear_a)).norm() < 1e-12);
+                assert_eq!(
+                    normal.target, 0.0,
+                    "a flat face's corner is held at its level"
+                );
+            }
+        }
+        let twist = blocks_with(&flat, Vector3::zeros(), frame.normal * 5.0);
+        let slide = blocks_with(
+            &flat,
+            (frame.tangent1 - frame.normal) * 5.0,
+            Vector3::zeros(),
+        );
+        assert_eq!((twist.blocks.len(), slide.blocks.len()), (1, 1));
+        // A segment along the first tangent turned about the second: its ends go opposite ways.
+        let ends = [Point2::new(-1.0, 0.0), Point2::new(1.0, 0.0)];
+        let segment = contact(&ends, vec![0.001, 0.0005], Vec::new());
+        let problem = blocks_with(&segment, Vector3::zeros(), frame.tangent2 * 2.0);
+        assert_eq!(problem.blocks.len(), 2);
+        assert!(matches!(
+            problem.blocks[0].projection,
+            ContactProjection::Segment(_)
+        ));
+        // The end at +t₁ sinks at −(2 t₂ × t₁) · n = 2 m/s, 2 cm in the step: its landing
+        // block lets it come down the 0.5 mm to the deepest end's level within the step.
+        let normal = &problem.rows[problem.blocks[1].rows.start];
+        assert!((normal.target - (0.0005 - 0.001) / dt).abs() < 1e-12);
     }
 
     /// A point support (a cylinder's rim point, 1.5 mm in) with landing points beside it: the

@@ -13,7 +13,7 @@
 //! and [`end`](ContactSet::end)s the pass, which is where pairs no longer touching or no longer
 //! met are dropped; rows are built in set order, each pair
 //! recording its blocks; [`warm_start`](ContactSet::warm_start) starts every row from the last
-//! solve — the face model's one block per pair from the impulse it applied to body A
+//! solve — the face model's one block per pair from the impulse all its blocks applied to body A
 //! ([`ContactImpulse`]), moved to the new block's point and read on its axes, whatever its
 //! support became; the vertex and patch models' rows from the impulse of the row with the same
 //! key, the feature id of the support vertex the row acts at (or the whole contact) and the
@@ -494,14 +494,16 @@ impl ContactSet {
     }
 
     /// Keeps what `problem`'s solve (under `model`) left of every pair for the next warm start:
-    /// the face model's block (the pair's first, [`started_blocks`]) as the impulse it applied
-    /// to body A, other rows' impulses by key.
+    /// under the face model the impulse all the pair's blocks applied to body A (its own and
+    /// its landing blocks': where a landing block pivoted a tipping body, the next step's block
+    /// starts with that load at that edge, instead of rebuilding it from zero; a 1000-cube
+    /// pile settled to fewer deep contacts with it), other rows' impulses by key.
     pub(crate) fn store(&mut self, model: ContactModel, problem: &Problem<ContactProjection>) {
         let next = &mut self.next_impulses;
         next.clear();
         for entry in &mut self.entries {
             let state = &mut entry.state;
-            let rows = rows_of(problem, &started_blocks(model, &state.blocks));
+            let rows = rows_of(problem, &state.blocks);
             state.last = match (&state.last, model) {
                 // A pair without rows this step (its bodies asleep) keeps what it had.
                 (Solved::Rows(solved_with, stored), _) if rows.is_empty() => {
@@ -555,9 +557,10 @@ pub(crate) fn support_of(contact: &Contact, gravity: &Vector3<f64>) -> Support {
     }
 }
 
-/// The blocks of a pair's `blocks` under `model` that its warm start starts and its store
-/// keeps: under the face model its own block, the first (the landing blocks of a tilted face
-/// follow it and start from zero: they catch a landing, a step's event); under the others all.
+/// The blocks of a pair's `blocks` under `model` that its warm start starts: under the face
+/// model its own block, the first, with everything the pair applied (the landing blocks of a
+/// tilted or tipping face follow it and start from zero: they catch a landing, a step's
+/// event); under the others all.
 fn started_blocks(model: ContactModel, blocks: &Range<usize>) -> Range<usize> {
     match model {
         ContactModel::Face => blocks.start..blocks.end.min(blocks.start + 1),
