@@ -72,6 +72,22 @@ impl ContactModel {
         problem: &mut Problem<ContactProjection>,
         biases: &mut Vec<f64>,
     ) -> Result<(), ContactError> {
+        self.build_split_bearing(contact, None, dt, settings, problem, biases)
+    }
+
+    /// As [`ContactModel::build_split`], with the face model's bearing part of `contact` already
+    /// cut ([`face::Bearing`], kept by a caller while the contact does not change): the rows
+    /// are the same. `bearing` must be the contact's own; one cut under another slop is cut
+    /// again, and the other models do not read it.
+    pub fn build_split_bearing(
+        self,
+        contact: &Contact,
+        bearing: Option<&face::Bearing>,
+        dt: f64,
+        settings: &ContactSettings,
+        problem: &mut Problem<ContactProjection>,
+        biases: &mut Vec<f64>,
+    ) -> Result<(), ContactError> {
         if !(dt.is_finite() && dt > 0.0) {
             return Err(ContactError::InvalidTimeStep(dt));
         }
@@ -79,7 +95,7 @@ impl ContactModel {
         match self {
             Self::Vertex => vertex::build(contact, dt, settings, problem, biases),
             Self::Patch => patch::build(contact, dt, settings, problem, biases),
-            Self::Face => face::build(contact, dt, settings, problem, biases),
+            Self::Face => face::build(contact, bearing, dt, settings, problem, biases),
         }
         Ok(())
     }

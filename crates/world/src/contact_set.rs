@@ -28,7 +28,10 @@
 use std::ops::Range;
 
 use nalgebra::{Point3, UnitQuaternion, Vector3};
-use tatami_contact::{Contact, ContactImpulse, ContactModel, ContactProjection};
+use tatami_contact::face::Bearing;
+use tatami_contact::{
+    Contact, ContactError, ContactImpulse, ContactModel, ContactProjection, ContactSettings,
+};
 use tatami_lcp::pgs::Support;
 use tatami_lcp::{Problem, Projection};
 
@@ -147,6 +150,8 @@ struct PairState {
     last: Solved,
     /// Still touching as of the current collision pass (its contact kept or recomputed).
     touching: bool,
+    /// The face model's bearing part of the contact, while the contact is unchanged.
+    bearing: Option<Bearing>,
 }
 
 /// What the last solve left of a pair, for the next warm start.
@@ -287,6 +292,7 @@ impl ContactSet {
             {
                 entry.state.poses = now;
                 entry.state.touching = true;
+                entry.state.bearing = None;
                 return false;
             }
             // A pair no longer touching is left without depths until `end` drops it.
@@ -294,6 +300,7 @@ impl ContactSet {
                 depths: std::mem::take(&mut entry.contact.depths),
                 normal: Some(entry.contact.frame.normal),
             };
+            entry.state.bearing = None;
             entry.state.touching = match compute(scratch, pair, recycled) {
                 Some((contact, features, poses)) => {
                     entry.contact = contact;
@@ -345,6 +352,7 @@ impl ContactSet {
                 blocks: 0..0,
                 last: Solved::Nothing,
                 touching: true,
+                bearing: None,
             },
         });
         self.met.push(true);
@@ -406,6 +414,7 @@ impl ContactSet {
         for e in &mut self.entries {
             renumber(&mut e.contact.body_a);
             renumber(&mut e.contact.body_b);
+            e.state.bearing = None;
         }
         self.sort_held();
     }
@@ -420,6 +429,21 @@ impl ContactSet {
         self.entries
             .get(index)
             .map(|e| (&e.contact, e.state.blocks.clone()))
+    }
+
+    /// The contact at `index` and its face-model [`Bearing`] under `settings` (an error for
+    /// depths that are not one finite value per support vertex), cut only when the contact
+    /// (or the slop) changed since it was last asked for: a resting pair's is cut once.
+    pub(crate) fn with_bearing(
+        &mut self,
+        index: usize,
+        settings: &ContactSettings,
+    ) -> Option<(&Contact, Result<Option<&Bearing>, ContactError>)> {
+        let entry = self.entries.get_mut(index)?;
+        let kept = entry.state.bearing.take().filter(|b| b.is_for(settings));
+        let bearing = kept.map_or_else(|| Bearing::of(&entry.contact, settings), Ok);
+        let bearing = bearing.map(|bearing| &*entry.state.bearing.insert(bearing));
+        Some((&entry.contact, bearing.map(Some)))
     }
 
     /// Records that the contact at `index` took `blocks` of this step's problem.

@@ -4,7 +4,7 @@ use std::ops::Range;
 use std::time::Instant;
 
 use nalgebra::Vector3;
-use tatami_contact::{Contact, ContactProjection};
+use tatami_contact::{Contact, ContactModel, ContactProjection};
 use tatami_lcp::direct::{self, DirectInfo};
 use tatami_lcp::pgs::{self, PgsParams, PgsWorkspace, Record, Support, WarmStart};
 use tatami_lcp::{DisjointSets, LcpError, Problem, Row, SolverBody};
@@ -347,15 +347,32 @@ impl World {
         self.biases.clear();
         let contact_settings = self.settings.contact;
         let pairs = self.contact_set.contacts().len();
+        let model = self.settings.model;
         for index in 0..pairs {
             let first = problem.blocks.len();
-            if let Some((contact, _)) = self.contact_set.get(index)
-                && !self.bodies[contact.body_a.0].asleep
-                && !self.bodies[contact.body_b.0].asleep
-            {
-                self.settings
-                    .model
-                    .build_split(contact, dt, &contact_settings, problem, &mut self.biases)
+            let awake = self.contact_set.get(index).is_some_and(|(contact, _)| {
+                !self.bodies[contact.body_a.0].asleep && !self.bodies[contact.body_b.0].asleep
+            });
+            // The face model's bearing part is kept with the pair while its contact is.
+            let built = match (awake, model) {
+                (false, _) => None,
+                (true, ContactModel::Face) => {
+                    self.contact_set.with_bearing(index, &contact_settings)
+                }
+                (true, _) => (self.contact_set.get(index)).map(|(contact, _)| (contact, Ok(None))),
+            };
+            if let Some((contact, bearing)) = built {
+                bearing
+                    .and_then(|bearing| {
+                        model.build_split_bearing(
+                            contact,
+                            bearing,
+                            dt,
+                            &contact_settings,
+                            problem,
+                            &mut self.biases,
+                        )
+                    })
                     .map_err(|source| StepError::Contact {
                         pair: pair_name(&self.bodies, contact),
                         source,

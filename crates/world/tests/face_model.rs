@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{G, SIDE, cube, floor, rotation, run};
+use common::{DT, G, SIDE, cube, floor, rotation, run};
 use nalgebra::{Point3, Vector3};
 use tatami_contact::face::FaceProjection;
 use tatami_contact::{BEARING_DEPTH, BEARING_DEPTH_PER_WIDTH, ContactProjection};
@@ -231,6 +231,68 @@ fn a_cube_tipping_over_an_edge_follows_the_closed_form() {
 /// model gave a tipping support's sinking vertices landing blocks it held the support at its
 /// centre and turned the body about it: the 2 m cube at 1.2 rad/s left the step turning at
 /// 0.71 rad/s instead of 0.24.
+/// The face model cuts a resting pair's bearing part once and keeps it while the contact is
+/// kept: every step, each face block's polygon and bodies are those of the bearing part cut
+/// afresh from the pair's contact under the current settings — through cubes landing tilted
+/// within the feature angle, one sliding, one resting tilted on a shim, the slop changed under
+/// them (the tilted cube's part becomes its whole face), and a body removed (the pairs after it
+/// renumbered). Each of the three ways a kept part goes stale (a contact carried, the slop, a
+/// renumbering) failed it when left out.
+#[test]
+fn a_kept_bearing_part_is_the_one_cut_afresh() {
+    let tilted = |name: &str, x: f64, degrees: f64| {
+        cube(name, [x, 0.0, SIDE / 2.0 + 0.02]).rotation(rotation([0.3, 1.0, 0.0], degrees))
+    };
+    let bodies = vec![
+        floor(),
+        tilted("a", -6.0, 0.6),
+        tilted("b", -2.0, 0.9),
+        tilted("c", 2.0, 0.4).velocity([0.8, 0.3, 0.0]),
+        tilted("d", 6.0, 0.7),
+        // A 2 cm shim under cube a's far side: it rests on the floor along its near edge,
+        // tilted 0.7°, its face's part along that edge bearing; a smaller slop then finds it
+        // pressed in deeper than the slop, and the whole face bears.
+        BodyDesc::fixed(Shape::cuboid([0.2, 3.0, 0.02])).position([-5.3, 0.0, 0.01]),
+    ];
+    let mut w = world(ContactModel::Face, bodies);
+    let mut checked = [0, 0];
+    for step in 0..120 {
+        if step == 50 {
+            let mut settings = *w.settings();
+            settings.contact.slop = 1e-5;
+            w.set_settings(settings).unwrap();
+        }
+        if step == 80 {
+            let id = w.bodies()[2].id();
+            w.remove_body(id).unwrap();
+        }
+        w.step(DT).unwrap();
+        let settings = w.settings().contact;
+        let problem = w.problem();
+        for block in &problem.blocks {
+            let ContactProjection::Face(face) = &block.projection else {
+                continue;
+            };
+            let pair = (block.body_a, block.body_b);
+            let contact = (w.contacts())
+                .find(|c| (c.body_a, c.body_b) == pair)
+                .expect("a face block's pair has a contact");
+            let part = tatami_contact::face::bearing_contact(contact, &settings).unwrap();
+            checked[usize::from(part.is_some())] += 1;
+            let expected = part.as_ref().unwrap_or(contact);
+            assert_eq!(
+                face.support.vertices(),
+                expected.support.vertices(),
+                "step {step}, bodies {pair:?}"
+            );
+        }
+    }
+    assert!(
+        checked[0] > 50 && checked[1] > 20,
+        "faces whole and cut: {checked:?}"
+    );
+}
+
 /// A body resting at depth 0 and set turning about `axis`, with the closed form's terms.
 struct Tipping {
     name: &'static str,
