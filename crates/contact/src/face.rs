@@ -305,6 +305,9 @@ pub fn bearing_contact(
 ///     Ok(problem.rows)
 /// };
 /// assert_eq!(build(Some(&bearing))?, build(None)?);
+/// // One of a pair of other bodies is not read: cut afresh, not a panic.
+/// let other = Contact { body_a: BodyId(5), body_b: BodyId(7), ..tilted.clone() };
+/// assert_eq!(build(Some(&Bearing::of(&other, &settings)?))?, build(None)?);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 #[derive(Debug, Clone)]
@@ -339,6 +342,12 @@ impl Bearing {
     pub fn is_for(&self, settings: &ContactSettings) -> bool {
         self.slop.to_bits() == settings.slop.to_bits()
     }
+
+    /// Whether it can be `contact`'s: a part is between the same bodies.
+    fn is_of(&self, contact: &Contact) -> bool {
+        self.part()
+            .is_none_or(|part| (part.body_a, part.body_b) == (contact.body_a, contact.body_b))
+    }
 }
 
 /// [`bearing_contact`] of a contact whose depths are checked, `within` its bearing depth.
@@ -371,7 +380,7 @@ pub(crate) fn build(
 ) {
     let fresh;
     let (bearing, within) = match cut {
-        Some(cut) if cut.is_for(settings) => (cut.part(), cut.within),
+        Some(cut) if cut.is_for(settings) && cut.is_of(contact) => (cut.part(), cut.within),
         _ => {
             let within = bearing_depth(&contact.support);
             fresh = bearing_of_checked(contact, settings, within);

@@ -77,8 +77,8 @@ impl ContactModel {
 
     /// As [`ContactModel::build_split`], with the face model's bearing part of `contact` already
     /// cut ([`face::Bearing`], kept by a caller while the contact does not change): the rows
-    /// are the same. `bearing` must be the contact's own; one cut under another slop is cut
-    /// again, and the other models do not read it.
+    /// are the same. `bearing` must be the contact's own; one cut under another slop, or
+    /// between other bodies, is cut again, and the other models do not read it.
     pub fn build_split_bearing(
         self,
         contact: &Contact,
