@@ -31,7 +31,7 @@
 use nalgebra::{Matrix3, Point2, Point3, UnitQuaternion, Vector3};
 use smallvec::SmallVec;
 use std::sync::OnceLock;
-use tatami_contact::{ContactFrame, ContactModel, Landing};
+use tatami_contact::{BEARING_DEPTH, ContactFrame, ContactModel, Landing};
 use tatami_geometry::nearest::closest_point_on_segment;
 use tatami_geometry::polygon::ring_next;
 use tatami_geometry::{ConvexPolygon, PolygonKind, signed_area};
@@ -73,6 +73,9 @@ pub(crate) struct Feature {
     pub ring: bool,
     /// Outward unit normal of the face holding every point, if known.
     pub face_normal: Option<Vector3<f64>>,
+    /// For a cylinder's side line, the radius of the side it lies on: the surface falls away
+    /// across the line, by `e² / 2r` at `e` from it.
+    pub side_radius: Option<f64>,
     /// Points of the body beside the feature where it would land if it turned
     /// ([`Outline::landing`]); empty unless asked for.
     pub landing: Vec<FeaturePoint>,
@@ -206,6 +209,7 @@ impl Outline {
         angle: &FeatureAngle,
         feature: &mut Feature,
     ) {
+        feature.side_radius = None;
         if let Self::Polyhedron {
             box_half_extents: Some(h),
             ..
@@ -253,6 +257,7 @@ impl Outline {
                     let rim = rim.unwrap_or_default();
                     if d.z.abs() <= angle.sin {
                         // Lying on its side: the line along the axis.
+                        feature.side_radius = Some(*radius);
                         out.extend(
                             [
                                 (rim - Vector3::z() * *half_height, 2 * rim_points),
@@ -467,7 +472,14 @@ pub(crate) fn support(
     let frame = ContactFrame::from_normal(nalgebra::center(&a0.point, &b0.point), *normal).ok()?;
     let surface_a = Surface::fit(&frame, feature_a, ids, Side::A)?;
     let surface_b = Surface::fit(&frame, feature_b, ids, Side::B)?;
-    let mut points = overlap(&surface_a, &surface_b);
+    let mut points = match (feature_a.side_radius, feature_b.side_radius) {
+        (Some(ra), Some(rb))
+            if (surface_a.kind, surface_b.kind) == (PolygonKind::Segment, PolygonKind::Segment) =>
+        {
+            side_lines_overlap(&surface_a.outline, &surface_b.outline, ra, rb)
+        }
+        _ => overlap(&surface_a, &surface_b),
+    };
     if points.is_empty() {
         // Touching only at the boundary within rounding: the nearest point of A's outline.
         let hull = |s: &Surface| ConvexPolygon::from_points(&s.outline).ok();
@@ -795,6 +807,49 @@ fn clip_segment(s: &[Point2<f64>], clip: &[Point2<f64>]) -> Points<Point2<f64>> 
     Points::from_slice(&[p + (q - p) * t0, p + (q - p) * t1])
 }
 
+/// Two cylinders' side lines `a` and `b` (radii `ra`, `rb`): where the sides meet within
+/// [`BEARING_DEPTH`]. Lines (nearly) parallel overlap along their common part, as edges do
+/// ([`segment_overlap`]); lines crossing at `α` do not meet at their crossing point alone, as
+/// straight edges would: off it along the bisector by `s`, each side falls away from the
+/// other by `(s sin(α/2))² / 2r`, so they stay within that depth for
+/// `|s| ≤ √(depth / (sin²(α/2) (1/2ra + 1/2rb)))`, the whole overlap of two long cylinders
+/// crossing at a few degrees. Held at their crossing point alone, two lying cylinders crossing
+/// at 3.5° in a pile rocked about it, ends dipping in, 5–8 mm deep for seconds.
+fn side_lines_overlap(
+    a: &[Point2<f64>],
+    b: &[Point2<f64>],
+    ra: f64,
+    rb: f64,
+) -> Points<Point2<f64>> {
+    let crossing = segment_overlap(a, b);
+    let (Some(da), Some(db), &[c]) = (
+        (a[1] - a[0]).try_normalize(0.0),
+        (b[1] - b[0]).try_normalize(0.0),
+        crossing.as_slice(),
+    ) else {
+        return crossing;
+    };
+    let db = if da.dot(&db) < 0.0 { -db } else { db };
+    let Some(m) = (da + db).try_normalize(0.0) else {
+        return crossing;
+    };
+    let half_sin_squared = (1.0 - da.dot(&db)) / 2.0;
+    let reach = (BEARING_DEPTH / (half_sin_squared * (0.5 / ra + 0.5 / rb))).sqrt();
+    // Along the bisector, within reach and over both segments.
+    let (mut lo, mut hi) = (-reach, reach);
+    for (start, end, d) in [(a[0], a[1], da), (b[0], b[1], db)] {
+        let along = m.dot(&d);
+        let (t0, t1) = ((start - c).dot(&d), (end - c).dot(&d));
+        let (t0, t1) = (t0.min(t1), t0.max(t1));
+        lo = lo.max(t0 / along);
+        hi = hi.min(t1 / along);
+    }
+    if lo >= hi {
+        return crossing;
+    }
+    Points::from_slice(&[c + m * lo, c + m * hi])
+}
+
 /// Two segments: their common part when (nearly) parallel, else their crossing point.
 fn segment_overlap(a: &[Point2<f64>], b: &[Point2<f64>]) -> Points<Point2<f64>> {
     let (a0, a1) = (a[0], a[1]);
@@ -827,6 +882,7 @@ fn segment_overlap(a: &[Point2<f64>], b: &[Point2<f64>]) -> Points<Point2<f64>> 
 mod tests {
     use super::*;
     use crate::{BodyDesc, Shape};
+    use nalgebra::Vector2;
 
     /// Feature points numbered in order.
     fn numbered(points: Vec<Point3<f64>>) -> Vec<FeaturePoint> {
@@ -854,6 +910,7 @@ mod tests {
             points: points.to_vec(),
             ring: false,
             face_normal: None,
+            side_radius: None,
             landing: Vec::new(),
         }
     }
@@ -933,6 +990,56 @@ mod tests {
             xs
         };
         assert!((xs[0] + 1.0).abs() < 1e-12 && (xs[1] - 1.0).abs() < 1e-12);
+    }
+
+    /// Two cylinders' side lines crossing at `α` meet along the bisector within the closed
+    /// form's reach `√(δ / (sin²(α/2) (1/2ra + 1/2rb)))` of their crossing, δ the bearing
+    /// depth, clipped to where both lines run: at 30° a short segment centred on the
+    /// crossing, at 3.5° the part of the bisector over both lines (each 0.9 m long, so about
+    /// their whole length), turned anywhere in the plane. Straight edges crossing at 3.5° meet
+    /// at their crossing point alone, and nearly parallel side lines along their common part.
+    #[test]
+    fn crossing_side_lines_meet_along_the_bisector_within_the_bearing_depth() {
+        let (ra, rb) = (0.4, 0.3);
+        for turn in [0.0, 0.7, 2.9] {
+            let line = |angle: f64, half: f64, shift: Vector2<f64>| {
+                let d = Vector2::new((turn + angle).cos(), (turn + angle).sin()) * half;
+                [Point2::from(shift - d), Point2::from(shift + d)]
+            };
+            let c = Point2::new(0.3, -0.2);
+            for degrees in [30.0_f64, 3.5] {
+                let alpha = degrees.to_radians();
+                let (a, b) = (line(0.0, 0.45, c.coords), line(alpha, 0.45, c.coords));
+                let points = side_lines_overlap(&a, &b, ra, rb);
+                assert_eq!(points.len(), 2, "{degrees}°");
+                let reach =
+                    (BEARING_DEPTH / ((alpha / 2.0).sin().powi(2) * (0.5 / ra + 0.5 / rb))).sqrt();
+                // Over both lines: a point at `r` along the bisector projects `r cos(α/2)` along
+                // each from the crossing, which each line's 0.45 m bounds.
+                let expected = reach.min(0.45 / (alpha / 2.0).cos());
+                let bisector = Vector2::new((turn + alpha / 2.0).cos(), (turn + alpha / 2.0).sin());
+                for p in &points {
+                    let r = p - c;
+                    assert!(
+                        r.perp(&bisector).abs() < 1e-12,
+                        "{degrees}°: off the bisector"
+                    );
+                    assert!(
+                        (r.norm() - expected).abs() < 1e-12,
+                        "{degrees}°: {}",
+                        r.norm()
+                    );
+                }
+                if degrees == 30.0 {
+                    assert!(expected < 0.1, "a short segment: {expected}");
+                }
+                // Straight edges meet at the crossing only.
+                assert_eq!(segment_overlap(&a, &b).len(), 1);
+            }
+            // Parallel within the edges' tolerance: the common part, as for edges.
+            let (a, b) = (line(0.0, 0.45, c.coords), line(0.005, 0.3, c.coords));
+            assert_eq!(side_lines_overlap(&a, &b, ra, rb), segment_overlap(&a, &b));
+        }
     }
 
     #[test]
@@ -1032,6 +1139,7 @@ mod tests {
                     points,
                     ring: true,
                     face_normal: Some(lean * Vector3::z()),
+                    side_radius: None,
                     landing: Vec::new(),
                 };
                 let by_plane = Surface::fit(&frame, &placed, VertexIds::Named, Side::A).unwrap();
