@@ -13,8 +13,8 @@
 //!   count; a segment's block has 5 (the tilt across it: [`segment`]) and a point's 3 (no
 //!   torque). Points standing off the support within the margin, where it would land as it
 //!   turns (a tilted face's far corners, a cylinder's rim beside the one point it rests on,
-//!   [`Contact::landing`]), get a point's 3 rows each, which let them close their gap within
-//!   the step and no more.
+//!   [`Contact::landing`]), and the vertices a support tipping about its centre would sink,
+//!   get a point's 3 rows each, which let them close their gap within the step and no more.
 //!
 //! Rows are written into a [`tatami_lcp::Problem`] whose blocks carry a [`ContactProjection`],
 //! so one problem holds contacts of any model and any solver of the LCP crate can solve it.

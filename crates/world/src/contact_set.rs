@@ -438,12 +438,12 @@ impl ContactSet {
         &mut self,
         index: usize,
         settings: &ContactSettings,
-    ) -> Option<(&Contact, Result<Option<&Bearing>, ContactError>)> {
+    ) -> Option<(&Contact, Result<&Bearing, ContactError>)> {
         let entry = self.entries.get_mut(index)?;
         let kept = entry.state.bearing.take().filter(|b| b.is_for(settings));
         let bearing = kept.map_or_else(|| Bearing::of(&entry.contact, settings), Ok);
         let bearing = bearing.map(|bearing| &*entry.state.bearing.insert(bearing));
-        Some((&entry.contact, bearing.map(Some)))
+        Some((&entry.contact, bearing))
     }
 
     /// Records that the contact at `index` took `blocks` of this step's problem.
@@ -460,7 +460,7 @@ impl ContactSet {
     }
 
     /// Starts every row of `problem` from the last solve under `model`: a face-model block from
-    /// the impulse the pair's block applied to body A ([`ContactImpulse::write_face_rows`]),
+    /// the impulse the pair's blocks applied to body A ([`ContactImpulse::write_face_rows`]),
     /// other rows from the impulse their key had (rows whose key is new keep zero). A pair with
     /// nothing stored under `model` (new, or last solved under another model) starts instead
     /// with the weight it carries at rest under `weight_per_mass` (gravity × dt) spread evenly

@@ -356,9 +356,9 @@ impl World {
             // The face model's bearing part is kept with the pair while its contact is.
             let built = match (awake, model) {
                 (false, _) => None,
-                (true, ContactModel::Face) => {
-                    self.contact_set.with_bearing(index, &contact_settings)
-                }
+                (true, ContactModel::Face) => (self.contact_set)
+                    .with_bearing(index, &contact_settings)
+                    .map(|(contact, bearing)| (contact, bearing.map(Some))),
                 (true, _) => (self.contact_set.get(index)).map(|(contact, _)| (contact, Ok(None))),
             };
             if let Some((contact, bearing)) = built {
