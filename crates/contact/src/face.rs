@@ -4,7 +4,9 @@
 //!
 //! 1. `f3 ≥ 0`; friction `|(f1, f2)| ≤ μ f3` (the isotropic default) or `|f1|, |f2| ≤ μ f3`
 //!    (the paper's eq. 4 box);
-//! 2. twist `|τ3| ≤ μ f3 r̄`, `r̄` the mean distance of the polygon from `G` (exact);
+//! 2. twist `|τ3 − (p × f)·n| ≤ μ f3 r̄`, `r̄` the mean distance of the polygon from `G`
+//!    (exact): bounded about the centre of pressure `p` below, where the friction force `f`
+//!    acts, not about `G` as the paper bounds it ([`TwistCentre`]; the same where `p = G`);
 //! 3. tilt: the centre of pressure `p = (−τ2, τ1) / f3` (relative to `G`) must lie in the
 //!    polygon; if not, it moves to the nearest point `p̂` and `τ1 = p̂_y f3`, `τ2 = −p̂_x f3`.
 //!
@@ -49,7 +51,10 @@ use crate::jacobian::{angular_jacobian, point_jacobian, point_motion, twist_rate
 use crate::segment::SegmentProjection;
 use crate::target::normal_target;
 use crate::vertex;
-use crate::{Contact, ContactError, ContactProjection, ContactSettings, FrictionCone, TwistRadius};
+use crate::{
+    Contact, ContactError, ContactProjection, ContactSettings, FrictionCone, TwistCentre,
+    TwistRadius,
+};
 
 /// Rows of a face constraint.
 pub const ROWS: usize = 6;
@@ -79,6 +84,8 @@ pub struct FaceProjection {
     pub cone: FrictionCone,
     /// Remove the torque's part parallel to the force first (paper's eq. 12 variant).
     pub remove_parallel_torque: bool,
+    /// About which point the twist is bounded.
+    pub twist_centre: TwistCentre,
     /// Fan sector of the last centre of pressure: the next search starts there.
     pub hint: Sector,
     /// The polygon's [clearance](ConvexPolygon::clearance) about `G`: a centre of pressure
@@ -93,6 +100,33 @@ impl FaceProjection {
         let f3 = impulses[NORMAL];
         (f3 > MIN_NORMAL_IMPULSE)
             .then(|| Point2::new(-impulses[TILT_2] / f3, impulses[TILT_1] / f3))
+    }
+
+    /// The middle of the twist's admissible interval `τ3 ∈ c ± μ r̄ f3` for impulses `λ`:
+    /// about the centre of pressure `p` ([`TwistCentre::CentreOfPressure`]), where the friction
+    /// force acts, `c` is that force's moment there, `(p × f)·n = −(τ1 f1 + τ2 f2) / f3`, so
+    /// the bound holds for the twist about `p`; about `G`, and under the paper's parallel-torque
+    /// variant, 0.
+    pub fn twist_centre(&self, impulses: &[f64]) -> f64 {
+        let f3 = impulses[NORMAL];
+        if self.twist_centre == TwistCentre::Centroid
+            || self.remove_parallel_torque
+            || f3 <= MIN_NORMAL_IMPULSE
+        {
+            return 0.0;
+        }
+        -(impulses[TILT_1] * impulses[FRICTION_1] + impulses[TILT_2] * impulses[FRICTION_1 + 1])
+            / f3
+    }
+
+    /// The twist's admissible interval `c ± μ r̄ f3` (`c` from [`Self::twist_centre`]), as the
+    /// projection clamps to it and `admissible` reads it.
+    fn twist_bounds(&self, impulses: &[f64]) -> (f64, f64) {
+        let (centre, twist) = (
+            self.twist_centre(impulses),
+            self.twist_per_normal * impulses[NORMAL],
+        );
+        (centre - twist, centre + twist)
     }
 
     fn clamp_zmp(&mut self, impulses: &mut [f64]) {
@@ -134,12 +168,12 @@ impl Projection for FaceProjection {
                 impulses[3..6].copy_from_slice(perpendicular.as_slice());
             }
         }
-        let twist = self.twist_per_normal * f3;
-        impulses[TWIST] = impulses[TWIST].max(-twist).min(twist);
         // The centre of pressure moves only when f3 or a tilt torque changed.
         if matches!(changed, NORMAL | TILT_1 | TILT_2) || self.remove_parallel_torque {
             self.clamp_zmp(impulses);
         }
+        let (low, high) = self.twist_bounds(impulses);
+        impulses[TWIST] = impulses[TWIST].max(low).min(high);
     }
 
     #[inline]
@@ -173,7 +207,8 @@ impl Projection for FaceProjection {
         let within_cone = self
             .cone
             .contains(&impulses[FRICTION_1..FRICTION_1 + 2], self.friction * f3);
-        if !within_cone || impulses[TWIST].abs() > self.twist_per_normal * f3 {
+        let (low, high) = self.twist_bounds(impulses);
+        if !within_cone || !(low..=high).contains(&impulses[TWIST]) {
             return false;
         }
         if p.coords.norm_squared() < self.clearance * self.clearance {
@@ -196,8 +231,10 @@ impl Projection for FaceProjection {
     /// support polygon's vertices `(xₖ, yₖ)` relative to `G`, `βₖ ≥ 0` — the centre of pressure
     /// `(−τ2, τ1)/f3 = Σ βₖ (xₖ, yₖ)/Σ βₖ` is then any point of the polygon, and `βₖ` is the
     /// normal force at vertex `k` (its condition is that vertex's separation speed ≥ 0). Friction
-    /// and twist act at `G`, bounded by `μ f3` and `μ r̄ f3` with `f3 = Σ βₖ`. `None` with the
-    /// parallel-torque variant, which is not linear.
+    /// and twist act at `G`, bounded by `μ f3` and `μ r̄ f3` with `f3 = Σ βₖ`: the twist about
+    /// `G` whatever [`TwistCentre`] says, since about the centre of pressure the bound is not
+    /// linear (a product of the tilts and the friction). `None` with the parallel-torque
+    /// variant, which is not linear.
     fn linear_set(&self, rows: usize) -> Option<LinearSet> {
         if self.remove_parallel_torque {
             return None;
@@ -453,7 +490,11 @@ fn build_bearing(
             let v = contact.support.vertices();
             let along = v[1] - v[0];
             let s = (frame.tangent1 * along.x + frame.tangent2 * along.y).normalize();
-            (frame.normal.cross(&s), 0.5 * along.norm())
+            (
+                frame.normal.cross(&s),
+                0.5 * along.norm(),
+                along.normalize(),
+            )
         });
     let centre = contact.support.centroid();
     let p = frame.to_world(&centre);
@@ -473,7 +514,7 @@ fn build_bearing(
         settings,
     );
     let face_axes = [frame.tangent1, frame.tangent2, frame.normal];
-    let segment_axes = segment.map(|(u, _)| [u, frame.normal]);
+    let segment_axes = segment.map(|(u, _, _)| [u, frame.normal]);
     let torque_axes: &[Vector3<f64>] = match &segment_axes {
         Some(axes) => axes,
         None => &face_axes,
@@ -501,10 +542,12 @@ fn build_bearing(
     let friction = material.friction(slip, settings.slip_threshold);
     let twist_per_normal = twist_friction * r_bar;
     let projection = match segment {
-        Some((_, half_length)) => ContactProjection::Segment(SegmentProjection {
+        Some((_, half_length, along)) => ContactProjection::Segment(SegmentProjection {
             friction,
             twist_per_normal,
             half_length,
+            along,
+            twist_centre: settings.twist_centre,
             cone: settings.friction_cone,
         }),
         None => ContactProjection::Face(FaceProjection {
@@ -514,6 +557,7 @@ fn build_bearing(
             twist_per_normal,
             cone: settings.friction_cone,
             remove_parallel_torque: settings.remove_parallel_torque,
+            twist_centre: settings.twist_centre,
             hint: Sector::default(),
             clearance: contact.support.clearance(&centre),
         }),
@@ -728,5 +772,73 @@ mod tests {
                 what: "landing point"
             })
         ));
+    }
+
+    /// The twist interval by hand: a 2 × 2 square about `G`, `f3 = 2` with its centre of
+    /// pressure at `p = (0.5, 0)` (`τ2 = −1`) and friction `(0, 0.8)`, whose moment at `p` is
+    /// `0.5 · 0.8 = 0.4`; with `μ r̄ = 0.1` the twist about `G` may be `0.4 ± 0.2`, or `±0.2`
+    /// about `G` itself. The segment's likewise, its centre of pressure `x = −τu / f3 = 0.5`
+    /// along `s = (0.6, 0.8)`: moment `0.5 (0.6 · 0.8 − 0.8 · 0) = 0.24`.
+    #[test]
+    fn the_twist_is_bounded_about_the_centre_of_pressure() {
+        let square =
+            [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(x, y)| Point2::new(x, y));
+        let support = ConvexPolygon::from_points(&square).unwrap();
+        let face = |twist_centre| FaceProjection {
+            support: support.clone(),
+            centre: Point2::origin(),
+            friction: 0.5,
+            twist_per_normal: 0.1,
+            cone: FrictionCone::Circle,
+            remove_parallel_torque: false,
+            twist_centre,
+            hint: Sector::default(),
+            clearance: 0.0,
+        };
+        for (twist_centre, low, high) in [
+            (TwistCentre::CentreOfPressure, 0.2, 0.6),
+            (TwistCentre::Centroid, -0.2, 0.2),
+        ] {
+            for (twist, expected) in [
+                (-0.5, low),
+                (0.0, 0.0f64.max(low)),
+                (0.5, 0.5f64.min(high)),
+                (0.9, high),
+            ] {
+                let mut impulses = [2.0, 0.0, 0.8, 0.0, -1.0, twist];
+                let mut projection = face(twist_centre);
+                projection.project(&mut impulses, TWIST);
+                assert!(
+                    (impulses[TWIST] - expected).abs() < 1e-15,
+                    "{twist_centre:?} {twist}: {impulses:?}"
+                );
+                assert!(projection.admissible(&impulses), "{twist_centre:?} {twist}");
+                assert_eq!(
+                    projection.admissible(&[2.0, 0.0, 0.8, 0.0, -1.0, twist]),
+                    twist == expected
+                );
+            }
+        }
+        let segment = |twist_centre| SegmentProjection {
+            friction: 0.5,
+            twist_per_normal: 0.1,
+            half_length: 1.0,
+            along: Vector2::new(0.6, 0.8),
+            cone: FrictionCone::Circle,
+            twist_centre,
+        };
+        for (twist_centre, centre) in [
+            (TwistCentre::CentreOfPressure, 0.24),
+            (TwistCentre::Centroid, 0.0),
+        ] {
+            for twist in [-1.0, 1.0] {
+                let mut impulses = [2.0, 0.0, 0.8, -1.0, twist];
+                segment(twist_centre).project(&mut impulses, 4);
+                assert!(
+                    (impulses[4] - (centre + twist * 0.2)).abs() < 1e-15,
+                    "{twist_centre:?}: {impulses:?}"
+                );
+            }
+        }
     }
 }

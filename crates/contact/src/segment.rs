@@ -9,17 +9,20 @@
 //! frame's tangents and projected the centre of pressure back onto the line after every row
 //! update: one of the six rows was updated and projected away each sweep, three nearest-point
 //! searches ran per update, and a whole-block step never landed on the line, so a segment was
-//! always updated row by row. Here every bound is a box on one row (scaled by `f3`), a
-//! sticking segment is stepped whole like a face, and the admissible set is the same.
+//! always updated row by row. Here every bound is a box on one row (scaled by `f3`) — the
+//! twist's centred on the friction force's moment at the centre of pressure, as the face's
+//! ([`crate::TwistCentre`]) — a sticking segment is stepped whole like a face, and the
+//! admissible set is the same.
 //!
 //! Across steps the block is carried as the impulse it applied ([`crate::ContactImpulse`]):
 //! `u` turns with the segment, so its tilt is read anew on the next step's axes, whether the
 //! segment stays one (its ends swapped or clipped by other edges) or becomes a face or a point.
 
+use nalgebra::Vector2;
 use tatami_lcp::{LinearSet, Projection, RowBound};
 
-use crate::FrictionCone;
 use crate::face::MIN_NORMAL_IMPULSE;
+use crate::{FrictionCone, TwistCentre};
 
 /// Rows of a segment block.
 pub const ROWS: usize = 5;
@@ -39,8 +42,38 @@ pub struct SegmentProjection {
     pub twist_per_normal: f64,
     /// Half the segment's length: the tilt bound per unit normal impulse (m).
     pub half_length: f64,
+    /// The segment's direction `s` in the contact plane (unit, on the tangents `t1`, `t2`):
+    /// the centre of pressure is `x s` from `G`, where the friction force acts.
+    pub along: Vector2<f64>,
+    /// About which point the twist is bounded.
+    pub twist_centre: TwistCentre,
     /// Box or circular friction bound.
     pub cone: FrictionCone,
+}
+
+impl SegmentProjection {
+    /// The middle of the twist's admissible interval `τ3 ∈ c ± μ r̄ f3` for impulses `λ`, as
+    /// the face's ([`crate::face::FaceProjection::twist_centre`]): about the centre of pressure
+    /// `x s` (`x = −τu / f3`), the friction force's moment there, `x (s × f)·n`; about `G`, 0.
+    pub fn twist_centre(&self, impulses: &[f64]) -> f64 {
+        let f3 = impulses[NORMAL];
+        if self.twist_centre == TwistCentre::Centroid || f3 <= MIN_NORMAL_IMPULSE {
+            return 0.0;
+        }
+        let x = -impulses[TILT] / f3;
+        let (f1, f2) = (impulses[FRICTION_1], impulses[FRICTION_1 + 1]);
+        x * (self.along.x * f2 - self.along.y * f1)
+    }
+
+    /// The twist's admissible interval `c ± μ r̄ f3` (`c` from [`Self::twist_centre`]), as the
+    /// projection clamps to it and `admissible` reads it.
+    fn twist_bounds(&self, impulses: &[f64]) -> (f64, f64) {
+        let (centre, twist) = (
+            self.twist_centre(impulses),
+            self.twist_per_normal * impulses[NORMAL],
+        );
+        (centre - twist, centre + twist)
+    }
 }
 
 impl Projection for SegmentProjection {
@@ -51,8 +84,8 @@ impl Projection for SegmentProjection {
         self.cone.clamp(&mut impulses[1..3], self.friction * f3);
         let tilt = self.half_length * f3;
         impulses[TILT] = impulses[TILT].max(-tilt).min(tilt);
-        let twist = self.twist_per_normal * f3;
-        impulses[TWIST] = impulses[TWIST].max(-twist).min(twist);
+        let (low, high) = self.twist_bounds(impulses);
+        impulses[TWIST] = impulses[TWIST].max(low).min(high);
     }
 
     #[inline]
@@ -77,7 +110,10 @@ impl Projection for SegmentProjection {
             self.cone
                 .contains(&impulses[FRICTION_1..FRICTION_1 + 2], self.friction * f3)
                 && impulses[TILT].abs() <= self.half_length * f3
-                && impulses[TWIST].abs() <= self.twist_per_normal * f3
+                && {
+                    let (low, high) = self.twist_bounds(impulses);
+                    (low..=high).contains(&impulses[TWIST])
+                }
         } else {
             // Unloaded (or NaN): only the zero wrench is admissible.
             impulses.iter().all(|&x| x == 0.0)
@@ -92,7 +128,8 @@ impl Projection for SegmentProjection {
 
     /// The admissible wrenches exactly: `(f3, τu) = Σ βₖ (1, −xₖ)` over the two ends,
     /// `xₖ = ∓L/2`, `βₖ ≥ 0` the normal force at end `k`; friction and twist at `G`, bounded by
-    /// `μ f3` and `μ r̄ f3` with `f3 = Σ βₖ` — the face's set for a polygon of two vertices.
+    /// `μ f3` and `μ r̄ f3` with `f3 = Σ βₖ` — the face's set for a polygon of two vertices,
+    /// its twist bounded about `G` whatever [`TwistCentre`] says, as the face's.
     fn linear_set(&self, rows: usize) -> Option<LinearSet> {
         let mut set = LinearSet::new(rows);
         let ends: Vec<usize> = [self.half_length, -self.half_length]
@@ -116,6 +153,8 @@ mod tests {
             friction: 0.5,
             twist_per_normal: 0.5 * 0.25,
             half_length: 0.5,
+            along: Vector2::new(0.6, 0.8),
+            twist_centre: TwistCentre::CentreOfPressure,
             cone,
         }
     }

@@ -6,8 +6,8 @@
 
 use nalgebra::Point2;
 use proptest::prelude::*;
-use tatami_contact::FrictionCone;
 use tatami_contact::face::FaceProjection;
+use tatami_contact::{FrictionCone, TwistCentre};
 use tatami_geometry::{ConvexPolygon, Sector};
 use tatami_lcp::Projection;
 
@@ -31,6 +31,7 @@ fn face(points: &[(f64, f64)], cone: FrictionCone, clearance: bool) -> Option<Fa
         twist_per_normal: 0.2,
         cone,
         remove_parallel_torque: false,
+        twist_centre: TwistCentre::CentreOfPressure,
         hint: Sector(0),
     })
 }

@@ -53,7 +53,9 @@ pub use error::{StepError, WorldError};
 pub use settings::{MAX_ITERATIONS, PGS_TOLERANCE, Solver, WorldSettings};
 pub use shape::{HullMesh, LENGTHS, MassProperties, Shape};
 pub use sleep::{SLEEP_DEPTH_TOLERANCE, Sleeping};
-pub use tatami_contact::{ContactModel, ContactProjection, ContactSettings, FrictionCone};
+pub use tatami_contact::{
+    ContactModel, ContactProjection, ContactSettings, FrictionCone, TwistCentre,
+};
 pub use tatami_lcp::direct::{DirectInfo, DirectParams};
 pub use tatami_lcp::pgs::{PgsParams, WarmStart};
 pub use timings::StepTimings;

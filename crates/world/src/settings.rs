@@ -17,7 +17,9 @@ pub enum Solver {
     Pgs(PgsParams),
     /// The pivoting direct solver (dense, exact; for reference and comparison), for every
     /// contact model. Its problem must be linear, so it takes the circular friction cone as its
-    /// inscribed polygon of [`tatami_contact::FrictionCone::DIRECT_FACETS`] sides.
+    /// inscribed polygon of [`tatami_contact::FrictionCone::DIRECT_FACETS`] sides, and the face
+    /// model's twist bound about the support's centroid
+    /// ([`tatami_contact::TwistCentre::Centroid`]).
     Direct(DirectParams),
 }
 

@@ -9,8 +9,9 @@ use tatami_contact::face::FaceProjection;
 use tatami_contact::{BEARING_DEPTH, BEARING_DEPTH_PER_WIDTH, ContactProjection};
 use tatami_world::{BodyDesc, ContactModel, Shape, World};
 
-/// Checks every face block of the last step: `f3 ≥ 0`, friction and twist within their bounds,
-/// the centre of pressure inside the support polygon (to 1e-9 of its size).
+/// Checks every face block of the last step: `f3 ≥ 0`, friction and twist (about the centre of
+/// pressure) within their bounds, the centre of pressure inside the support polygon (to 1e-9 of
+/// its size).
 fn assert_face_wrenches(world: &World) {
     let problem = world.problem();
     for block in &problem.blocks {
@@ -27,7 +28,7 @@ fn assert_face_wrenches(world: &World) {
         assert!(l[1].abs() <= face.friction * f3 + slack, "friction {l:?}");
         assert!(l[2].abs() <= face.friction * f3 + slack, "friction {l:?}");
         assert!(
-            l[5].abs() <= face.twist_per_normal * f3 + slack,
+            (l[5] - face.twist_centre(&l)).abs() <= face.twist_per_normal * f3 + slack,
             "twist {l:?}"
         );
         match FaceProjection::centre_of_pressure(&l) {
@@ -630,5 +631,42 @@ fn a_cylinder_wobbling_on_its_rim_stays_out_of_the_floor() {
         );
         let still = body.angular_velocity().norm();
         assert!(still < 1e-4, "{case}: |ω| = {still} rad/s");
+    }
+}
+
+/// A plank (2 × 1 × 1 m) on a 25° ramp, sticking (tan 25° = 0.47 < μ = 0.5), over the ramp's
+/// corner: it bears on a 1.05 × 0.5 m part of its face, its centre of mass 5 cm inside that
+/// part's far end, 0.47 m from its centroid `G` across the slope. Held by friction at its
+/// centre of pressure, it stays; friction applied at `G` would need a twist of 0.47 × 0.47 f3
+/// about `G`, beyond the uniform-pressure bound μ r̄ f3 (0.15 f3), and it would spin off. The
+/// whole scene is turned 30° about the vertical, off the axes.
+#[test]
+fn a_plank_sticking_on_a_ramp_over_its_corner_stays() {
+    let slope = rotation([0.0, 0.0, 1.0], 30.0) * rotation([1.0, 0.0, 0.0], 25.0);
+    let place = |local: [f64; 3]| slope * Vector3::from(local);
+    for model in ContactModel::ALL {
+        // The ramp's top face is z = 0 in its frame, for x < 1 and y < 0.
+        let ramp = BodyDesc::fixed(Shape::cuboid([4.0, 3.0, 0.5]))
+            .name("ramp")
+            .position(place([-1.0, -1.5, -0.25]).into())
+            .rotation(slope)
+            .friction(0.5);
+        let start = place([0.95, 0.0, 0.5]);
+        let plank = BodyDesc::dynamic(Shape::cuboid([2.0, 1.0, 1.0]))
+            .name("plank")
+            .mass(1.0)
+            .position(start.into())
+            .rotation(slope)
+            .friction(0.5);
+        let mut w = world(model, vec![ramp, plank]);
+        run(&mut w, 3.0, |_| {});
+        let body = &w.bodies()[1];
+        let moved = (body.position().coords - start).norm();
+        let turned = body.rotation().angle_to(&slope);
+        assert!(
+            moved < 2e-3 && turned < 2e-3,
+            "{}: moved {moved} m, turned {turned} rad",
+            model.name()
+        );
     }
 }
