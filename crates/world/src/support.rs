@@ -49,6 +49,11 @@ const SAME_POINT: f64 = 0.01;
 /// without a heap allocation (a cylinder cap's 64 spill to the heap).
 type Points<T> = SmallVec<[T; 8]>;
 
+/// Squared distance, relative to a point's squared distance from the frame's origin (plus
+/// 1 m²), within which a support vertex is a fitted feature's own point: rounding of a clip at
+/// that point, far below any distance between two points of a shape.
+const SAME_OWN_POINT: f64 = 1e-24;
+
 /// A point of a body's touching feature and which point of the body it is: a hull vertex's
 /// index, a cylinder cap's rim point, … — the same from step to step while the body touches
 /// with the same feature.
@@ -559,13 +564,20 @@ fn identify(p: &Point2<f64>, a: &Surface, b: &Surface, tolerance: f64) -> Featur
 /// points, moved towards the other body until none of them lies past it. A hull's feature can
 /// be two faces meeting at a fold within the feature angle; the least-squares plane runs
 /// between them and would hide the fold's depth (a hull of the mixed pile rested with its
-/// fold 5.7 mm into the floor, its contact reading 1.5 mm, under the slop). Moved, the plane
-/// gives the deepest point its own depth, and the others at most the fold's more.
+/// fold 5.7 mm into the floor, its contact reading 1.5 mm, under the slop). A support vertex
+/// at one of the feature's own points reads that point's height; the plane, moved, serves the
+/// vertices where edges cross, at most the fold's deeper. Moved alone, it read every vertex
+/// but one too deep by up to the fold: a hull on the floor whose feature held a point 6.6 mm
+/// up read 4.4 mm where its lowest point was 1.0 mm in, and was pushed out until it floated
+/// 0.9 mm above the floor.
 struct Surface {
     outline: Points<Point2<f64>>,
     kind: PolygonKind,
     ids: Points<u32>,
     coefficients: Vector3<f64>,
+    /// A fitted feature's outline vertices' own heights (empty for a face's own plane or an
+    /// edge, whose heights are exact): a support vertex at one reads it, not the plane's.
+    own_heights: Points<f64>,
 }
 
 /// Which body of the pair a feature is of: A's faces B against the normal, B's faces A along it.
@@ -618,6 +630,7 @@ impl Surface {
             }
         };
         let height = |f: &FeaturePoint| (f.point - frame.origin).dot(&frame.normal);
+        let mut own_heights = Points::new();
         let coefficients = match (kind, feature.face_normal, &points[..]) {
             (PolygonKind::Point, ..) => {
                 let mean_height = points.iter().map(height).sum::<f64>() / points.len() as f64;
@@ -644,6 +657,16 @@ impl Surface {
                 Vector3::new(height(p0) - slope.dot(&q0.coords), slope.x, slope.y)
             }
             _ => {
+                // The outline's vertices are copies of the points: each keeps its own height.
+                own_heights = outline
+                    .iter()
+                    .map(|v| {
+                        plane
+                            .iter()
+                            .position(|q| q == v)
+                            .map_or(f64::NAN, |k| height(&points[k]))
+                    })
+                    .collect();
                 let hull = hull.or_else(|| ConvexPolygon::from_points(&plane).ok())?;
                 let mut fit = least_squares_plane(&hull, &plane, points.iter().map(height))?;
                 // Heights grow towards A: A's points past the plane lie below it, B's above.
@@ -667,11 +690,19 @@ impl Surface {
             kind,
             ids,
             coefficients,
+            own_heights,
         })
     }
 
     fn height(&self, p: &Point2<f64>) -> f64 {
-        self.coefficients.dot(&Vector3::new(1.0, p.x, p.y))
+        // A vertex where an edge was clipped at one of the points is that point to rounding.
+        let own = (self.outline.iter().zip(&self.own_heights))
+            .find(|(v, h)| {
+                (*v - p).norm_squared() <= SAME_OWN_POINT * (1.0 + v.coords.norm_squared())
+                    && !h.is_nan()
+            })
+            .map(|(_, &h)| h);
+        own.unwrap_or_else(|| self.coefficients.dot(&Vector3::new(1.0, p.x, p.y)))
     }
 
     /// Whether `p` is within the outline (counter-clockwise, convex) or on it.
@@ -1170,9 +1201,10 @@ mod tests {
 
     /// A hull whose bottom is two faces meeting at a fold, each tilted 0.49° (within the 1°
     /// feature angle), sunk 3 mm at the fold into a tilted slab, and turned about the normal:
-    /// the contact is as deep as the fold, whichever body is A. The least-squares plane
-    /// through the four bottom corners runs halfway up the fold's 6 mm and read about 0 mm,
-    /// so the fold rested in the slab, under the slop.
+    /// the contact is as deep as the fold, whichever body is A, and each corner reads its own
+    /// depth. The least-squares plane through the four bottom corners runs halfway up the
+    /// fold's 6 mm and read about 0 mm, so the fold rested in the slab, under the slop; moved
+    /// down to the fold, it read the raised corners 3 mm deep, 6 mm below where they are.
     #[test]
     fn a_folded_bottom_is_as_deep_as_its_fold() {
         let (fold, sunk) = (0.006, 0.003);
@@ -1216,6 +1248,18 @@ mod tests {
                     "turn {turn}, {name}: {} mm deep, the fold {} mm",
                     contact.depth() * 1e3,
                     sunk * 1e3
+                );
+                // Each corner at its own depth: the two on the fold's line, the raised two.
+                let mut depths = contact.depths.clone();
+                depths.sort_by(f64::total_cmp);
+                let expected = [sunk - fold, sunk - fold, sunk, sunk];
+                assert!(
+                    depths.len() == 4
+                        && depths
+                            .iter()
+                            .zip(expected)
+                            .all(|(d, e)| (d - e).abs() < 1e-9),
+                    "turn {turn}, {name}: depths {depths:?}"
                 );
             }
         }
