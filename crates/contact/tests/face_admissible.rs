@@ -12,7 +12,12 @@ use tatami_geometry::{ConvexPolygon, Sector};
 use tatami_lcp::Projection;
 
 /// A face projection on the polygon of `points` about its centroid.
-fn face(points: &[(f64, f64)], cone: FrictionCone, clearance: bool) -> Option<FaceProjection> {
+fn face(
+    points: &[(f64, f64)],
+    cone: FrictionCone,
+    clearance: bool,
+    twist_centre: TwistCentre,
+) -> Option<FaceProjection> {
     let points: Vec<Point2<f64>> = points.iter().map(|&(x, y)| Point2::new(x, y)).collect();
     let support = ConvexPolygon::from_points(&points).ok()?;
     if support.area() < 0.05 {
@@ -31,14 +36,16 @@ fn face(points: &[(f64, f64)], cone: FrictionCone, clearance: bool) -> Option<Fa
         twist_per_normal: 0.2,
         cone,
         remove_parallel_torque: false,
-        twist_centre: TwistCentre::CentreOfPressure,
+        twist_centre,
         hint: Sector(0),
     })
 }
 
 /// A wrench drawn so that every constraint is met or broken with fair odds: an unloaded face
 /// (all zero, or zero normal impulse with something else), a pull, or a push whose friction,
-/// twist and centre of pressure are scaled around their bounds.
+/// twist and centre of pressure are scaled around their bounds — the twist about `G`, or
+/// about the centre of pressure `(x, y)` (offset by the friction's moment there,
+/// `x f2 − y f1`).
 fn wrench() -> impl Strategy<Value = [f64; 6]> {
     (
         0..6u8,
@@ -51,14 +58,14 @@ fn wrench() -> impl Strategy<Value = [f64; 6]> {
             0 => [0.0; 6],
             1 => [0.0, 0.0, 0.0, 0.0, 0.0, twist],
             2 => [-f3, 0.0, 0.0, 0.0, 0.0, 0.0],
-            _ => [
-                f3,
-                0.5 * f3 * slip * heading.cos(),
-                0.5 * f3 * slip * heading.sin(),
-                y * f3,
-                -x * f3,
-                0.2 * f3 * twist,
-            ],
+            _ => {
+                let (f1, f2) = (
+                    0.5 * f3 * slip * heading.cos(),
+                    0.5 * f3 * slip * heading.sin(),
+                );
+                let moment = if kind == 3 { 0.0 } else { x * f2 - y * f1 };
+                [f3, f1, f2, y * f3, -x * f3, moment + 0.2 * f3 * twist]
+            }
         })
 }
 
@@ -74,10 +81,13 @@ proptest! {
         points in prop::collection::vec((-1.0..1.0f64, -1.0..1.0f64), 3..9),
         circular in any::<bool>(),
         clearance in any::<bool>(),
+        about_pressure in any::<bool>(),
         wrench in wrench(),
     ) {
         let cone = if circular { FrictionCone::Circle } else { FrictionCone::Box };
-        let Some(mut face) = face(&points, cone, clearance) else {
+        let twist_centre =
+            if about_pressure { TwistCentre::CentreOfPressure } else { TwistCentre::Centroid };
+        let Some(mut face) = face(&points, cone, clearance, twist_centre) else {
             return Ok(());
         };
         let mut projected = wrench;
@@ -93,7 +103,13 @@ proptest! {
 #[test]
 fn an_unloaded_face_admits_only_the_zero_wrench() {
     let square = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
-    let mut face = face(&square, FrictionCone::Circle, true).expect("a square face");
+    let mut face = face(
+        &square,
+        FrictionCone::Circle,
+        true,
+        TwistCentre::CentreOfPressure,
+    )
+    .expect("a square face");
     assert!(face.admissible(&[0.0; 6]));
     for row in 1..6 {
         let mut wrench = [0.0; 6];
