@@ -5,7 +5,9 @@
 //! `tolerance` (m/s, ≥ 0: PGS stops once a sweep changes no row's velocity by this much; see
 //! [`crate::PGS_TOLERANCE`], and 0 runs every sweep), `warm_start` and `shock_propagation` (both on by default), `sleeping` (off by default; see
 //! [`crate::Sleeping`]), `friction_cone` (`"circle"`,
-//! the isotropic default, or `"box"`, the paper's pyramid), `bias_rate`, `slop`,
+//! the isotropic default, or `"box"`, the paper's pyramid), `twist_centre`
+//! (`"centre_of_pressure"`, the default, or `"centroid"`, the paper's bound; see
+//! [`crate::TwistCentre`]), `bias_rate`, `slop`,
 //! `max_depenetration_speed` (m/s, > 0) and `max_velocity_bias` (m/s, ≥ 0; see
 //! [`tatami_contact::ContactSettings`]). A body may be `"kinematic": true`: it moves at its
 //! `velocity` and `angular_velocity` whatever touches it (see [`BodyDesc::kinematic`]).
@@ -45,7 +47,7 @@ use std::path::{Path, PathBuf};
 
 use nalgebra::{Point3, Unit, UnitQuaternion, Vector3};
 use serde::{Deserialize, Deserializer};
-use tatami_contact::{ContactModel, FrictionCone};
+use tatami_contact::{ContactModel, FrictionCone, TwistCentre};
 use tatami_lcp::direct::DirectParams;
 use tatami_lcp::pgs::{PgsParams, WarmStart};
 use thiserror::Error;
@@ -280,6 +282,13 @@ enum ConeName {
     Circle,
 }
 
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(rename_all = "snake_case")]
+enum TwistCentreName {
+    CentreOfPressure,
+    Centroid,
+}
+
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawScene {
@@ -305,6 +314,8 @@ struct RawScene {
     sleeping: Option<bool>,
     #[serde(default, deserialize_with = "present")]
     friction_cone: Option<ConeName>,
+    #[serde(default, deserialize_with = "present")]
+    twist_centre: Option<TwistCentreName>,
     #[serde(default, deserialize_with = "fraction")]
     bias_rate: Option<f64>,
     #[serde(default, deserialize_with = "present")]
@@ -419,6 +430,12 @@ impl RawScene {
             settings.contact.friction_cone = match cone {
                 ConeName::Box => FrictionCone::Box,
                 ConeName::Circle => FrictionCone::Circle,
+            };
+        }
+        if let Some(centre) = self.twist_centre {
+            settings.contact.twist_centre = match centre {
+                TwistCentreName::CentreOfPressure => TwistCentre::CentreOfPressure,
+                TwistCentreName::Centroid => TwistCentre::Centroid,
             };
         }
         if let Some(rate) = self.bias_rate {

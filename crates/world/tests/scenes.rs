@@ -195,10 +195,11 @@ fn solver_options_are_read() {
 fn contact_options_are_read_and_checked() {
     let text = scene_with(
         4,
-        r#"  "friction_cone": "box", "max_depenetration_speed": 2.5, "max_velocity_bias": 0,"#,
+        r#"  "friction_cone": "box", "max_depenetration_speed": 2.5, "max_velocity_bias": 0, "twist_centre": "centroid","#,
     );
     let contact = Scene::from_json(&text).unwrap().settings.contact;
     assert_eq!(contact.friction_cone, tatami_world::FrictionCone::Box);
+    assert_eq!(contact.twist_centre, tatami_world::TwistCentre::Centroid);
     assert_eq!(contact.max_depenetration_speed, 2.5);
     assert_eq!(contact.max_velocity_bias, 0.0);
     let plain = Scene::from_json(&scene_with(0, ""))
@@ -210,9 +211,15 @@ fn contact_options_are_read_and_checked() {
         tatami_world::FrictionCone::Circle,
         "isotropic unless asked for"
     );
+    assert_eq!(
+        plain.twist_centre,
+        tatami_world::TwistCentre::CentreOfPressure,
+        "twist about the centre of pressure unless asked for"
+    );
     for (option, message) in [
         (r#"  "max_depenetration_speed": 0,"#, "> 0"),
         (r#"  "max_velocity_bias": -1,"#, "≥ 0"),
+        (r#"  "twist_centre": "origin","#, "unknown variant"),
     ] {
         let (field, line, got) = rejection(&scene_with(4, option));
         let name = option.trim().split('"').nth(1).unwrap();
