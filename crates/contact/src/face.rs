@@ -107,7 +107,7 @@ impl FaceProjection {
     /// force acts, `c` is that force's moment there, `(p × f)·n = −(τ1 f1 + τ2 f2) / f3`, so
     /// the bound holds for the twist about `p`; about `G`, and under the paper's parallel-torque
     /// variant, 0.
-    pub fn twist_centre(&self, impulses: &[f64]) -> f64 {
+    pub fn twist_midpoint(&self, impulses: &[f64]) -> f64 {
         let f3 = impulses[NORMAL];
         if self.twist_centre == TwistCentre::Centroid
             || self.remove_parallel_torque
@@ -119,11 +119,11 @@ impl FaceProjection {
             / f3
     }
 
-    /// The twist's admissible interval `c ± μ r̄ f3` (`c` from [`Self::twist_centre`]), as the
+    /// The twist's admissible interval `c ± μ r̄ f3` (`c` from [`Self::twist_midpoint`]), as the
     /// projection clamps to it and `admissible` reads it.
     fn twist_bounds(&self, impulses: &[f64]) -> (f64, f64) {
         let (centre, twist) = (
-            self.twist_centre(impulses),
+            self.twist_midpoint(impulses),
             self.twist_per_normal * impulses[NORMAL],
         );
         (centre - twist, centre + twist)

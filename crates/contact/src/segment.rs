@@ -53,9 +53,9 @@ pub struct SegmentProjection {
 
 impl SegmentProjection {
     /// The middle of the twist's admissible interval `τ3 ∈ c ± μ r̄ f3` for impulses `λ`, as
-    /// the face's ([`crate::face::FaceProjection::twist_centre`]): about the centre of pressure
+    /// the face's ([`crate::face::FaceProjection::twist_midpoint`]): about the centre of pressure
     /// `x s` (`x = −τu / f3`), the friction force's moment there, `x (s × f)·n`; about `G`, 0.
-    pub fn twist_centre(&self, impulses: &[f64]) -> f64 {
+    pub fn twist_midpoint(&self, impulses: &[f64]) -> f64 {
         let f3 = impulses[NORMAL];
         if self.twist_centre == TwistCentre::Centroid || f3 <= MIN_NORMAL_IMPULSE {
             return 0.0;
@@ -65,11 +65,11 @@ impl SegmentProjection {
         x * (self.along.x * f2 - self.along.y * f1)
     }
 
-    /// The twist's admissible interval `c ± μ r̄ f3` (`c` from [`Self::twist_centre`]), as the
+    /// The twist's admissible interval `c ± μ r̄ f3` (`c` from [`Self::twist_midpoint`]), as the
     /// projection clamps to it and `admissible` reads it.
     fn twist_bounds(&self, impulses: &[f64]) -> (f64, f64) {
         let (centre, twist) = (
-            self.twist_centre(impulses),
+            self.twist_midpoint(impulses),
             self.twist_per_normal * impulses[NORMAL],
         );
         (centre - twist, centre + twist)

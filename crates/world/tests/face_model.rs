@@ -28,7 +28,7 @@ fn assert_face_wrenches(world: &World) {
         assert!(l[1].abs() <= face.friction * f3 + slack, "friction {l:?}");
         assert!(l[2].abs() <= face.friction * f3 + slack, "friction {l:?}");
         assert!(
-            (l[5] - face.twist_centre(&l)).abs() <= face.twist_per_normal * f3 + slack,
+            (l[5] - face.twist_midpoint(&l)).abs() <= face.twist_per_normal * f3 + slack,
             "twist {l:?}"
         );
         match FaceProjection::centre_of_pressure(&l) {
