@@ -10,10 +10,15 @@
 //! [`bearing_depth`] of its deepest point instead: the strip along the touching edge, which
 //! widens as the face closes and is the whole face once it lies flat within that depth. The
 //! depths are affine across the overlap of two planar features, so that part is the polygon
-//! cut by one line. A face pressed in deeper than the slop keeps its whole polygon: the
-//! overlap is being pushed out over all of it (500 cubes spawned inside one another, cut to
-//! slivers along their deepest edges, still overlapped by 0.53 m after 8 s; on whole faces
-//! the last overlap falls below 5 cm by 6.6 s).
+//! cut by one line. A face pressed in deeper than the slop all over keeps its whole polygon:
+//! the overlap is being pushed out over all of it (500 cubes spawned inside one another, cut
+//! to slivers along their deepest edges, still overlapped by 0.53 m after 8 s; on whole faces
+//! the last overlap falls below 5 cm by 6.6 s). One pressed in at its deepest point alone is
+//! cut: a face landing tilted within the feature angle leaves its low edge beyond the slop,
+//! where the position pass, removing a tenth of the depth beyond the slop a step, brings it to
+//! the slop from above and never past it, and a whole polygon kept while the deepest point was
+//! beyond the slop held such a face at its tilt (a 1 m cube dropped 0.8° off flat stood so,
+//! its high edge 12 mm up, for seconds).
 //!
 //! The depth follows the polygon's size ([`bearing_depth`]): the strip must stay narrow beside
 //! the face for the body to tip flat, and under a fixed 0.5 mm a 5 cm cube left tilted by 0.9°

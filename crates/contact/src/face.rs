@@ -262,9 +262,9 @@ impl Projection for FaceProjection {
 
 /// `contact` on the part of its support polygon the face model builds its block on: within
 /// [`bearing_depth`] of its deepest point (the polygon cut by one line, the depths being affine
-/// across it), unless pressed in deeper than the slop, when the overlap is being pushed out
-/// over all of it. `None` when that is all of it; a contact it returns is its own bearing
-/// contact. Errors when the depths are not one finite value per support vertex.
+/// across it), unless every vertex is pressed in deeper than the slop, when the overlap is
+/// being pushed out over all of it. `None` when that is all of it; a contact it returns is its
+/// own bearing contact. Errors when the depths are not one finite value per support vertex.
 ///
 /// ```
 /// use nalgebra::{Point2, Point3, Vector3};
@@ -290,8 +290,11 @@ impl Projection for FaceProjection {
 /// let bearing = bearing_contact(&tilted, &settings)?.expect("the far edge stands off");
 /// assert!(bearing.support.area() < 0.2);
 /// assert!(bearing_contact(&bearing, &settings)?.is_none());
-/// // Pressed in 5 mm, beyond the 2 mm slop: all of it.
-/// let pressed = Contact { depths: vec![0.005, -0.02, -0.02, 0.005], ..tilted.clone() };
+/// // Its edge pressed in 5 mm, beyond the 2 mm slop, the far edge still up: the strip alone.
+/// let landed = Contact { depths: vec![0.005, -0.02, -0.02, 0.005], ..tilted.clone() };
+/// assert!(bearing_contact(&landed, &settings)?.expect("the far edge stands off").support.area() < 0.2);
+/// // Pressed in beyond the slop all over: all of it.
+/// let pressed = Contact { depths: vec![0.03, 0.005, 0.005, 0.03], ..tilted.clone() };
 /// assert!(bearing_contact(&pressed, &settings)?.is_none());
 /// // A depth short: an error naming the count, not a panic.
 /// let short = Contact { depths: vec![0.001, -0.02], ..tilted };
@@ -393,7 +396,7 @@ fn bearing_of_checked(
     settings: &ContactSettings,
     within: f64,
 ) -> Option<Contact> {
-    if contact.depth() > settings.slop {
+    if contact.depths.iter().all(|&depth| depth > settings.slop) {
         return None;
     }
     bearing_part(contact, within)
