@@ -292,7 +292,8 @@ impl Projection for FaceProjection {
 /// assert!(bearing_contact(&bearing, &settings)?.is_none());
 /// // Its edge pressed in 5 mm, beyond the 2 mm slop, the far edge still up: the strip alone.
 /// let landed = Contact { depths: vec![0.005, -0.02, -0.02, 0.005], ..tilted.clone() };
-/// assert!(bearing_contact(&landed, &settings)?.expect("the far edge stands off").support.area() < 0.2);
+/// let strip = bearing_contact(&landed, &settings)?.expect("the far edge stands off");
+/// assert!(strip.support.area() < 0.2);
 /// // Pressed in beyond the slop all over: all of it.
 /// let pressed = Contact { depths: vec![0.03, 0.005, 0.005, 0.03], ..tilted.clone() };
 /// assert!(bearing_contact(&pressed, &settings)?.is_none());
