@@ -69,6 +69,13 @@ const TWIST: usize = 5;
 /// Below this normal impulse (N·s) a face carries no torque: the centre of pressure is undefined.
 pub const MIN_NORMAL_IMPULSE: f64 = 1e-12;
 
+/// A face's or a segment's twist interval `c ± μ r̄ f3` about its `midpoint` `c`
+/// (`twist_per_normal` = `μ r̄`, `f3` the normal impulse).
+pub(crate) fn twist_interval(midpoint: f64, twist_per_normal: f64, f3: f64) -> (f64, f64) {
+    let twist = twist_per_normal * f3;
+    (midpoint - twist, midpoint + twist)
+}
+
 /// The projection of a face block onto its admissible wrenches.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FaceProjection {
@@ -119,14 +126,14 @@ impl FaceProjection {
             / f3
     }
 
-    /// The twist's admissible interval `c ± μ r̄ f3` (`c` from [`Self::twist_midpoint`]), as the
-    /// projection clamps to it and `admissible` reads it.
+    /// The twist's admissible interval ([`twist_interval`] about [`Self::twist_midpoint`]), as
+    /// the projection clamps to it and `admissible` reads it.
     fn twist_bounds(&self, impulses: &[f64]) -> (f64, f64) {
-        let (centre, twist) = (
+        twist_interval(
             self.twist_midpoint(impulses),
-            self.twist_per_normal * impulses[NORMAL],
-        );
-        (centre - twist, centre + twist)
+            self.twist_per_normal,
+            impulses[NORMAL],
+        )
     }
 
     fn clamp_zmp(&mut self, impulses: &mut [f64]) {

@@ -21,7 +21,7 @@
 use nalgebra::Vector2;
 use tatami_lcp::{LinearSet, Projection, RowBound};
 
-use crate::face::MIN_NORMAL_IMPULSE;
+use crate::face::{MIN_NORMAL_IMPULSE, twist_interval};
 use crate::{FrictionCone, TwistCentre};
 
 /// Rows of a segment block.
@@ -65,14 +65,14 @@ impl SegmentProjection {
         x * (self.along.x * f2 - self.along.y * f1)
     }
 
-    /// The twist's admissible interval `c ± μ r̄ f3` (`c` from [`Self::twist_midpoint`]), as the
-    /// projection clamps to it and `admissible` reads it.
+    /// The twist's admissible interval ([`twist_interval`] about [`Self::twist_midpoint`]), as
+    /// the projection clamps to it and `admissible` reads it.
     fn twist_bounds(&self, impulses: &[f64]) -> (f64, f64) {
-        let (centre, twist) = (
+        twist_interval(
             self.twist_midpoint(impulses),
-            self.twist_per_normal * impulses[NORMAL],
-        );
-        (centre - twist, centre + twist)
+            self.twist_per_normal,
+            impulses[NORMAL],
+        )
     }
 }
 

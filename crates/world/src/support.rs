@@ -575,9 +575,10 @@ struct Surface {
     kind: PolygonKind,
     ids: Points<u32>,
     coefficients: Vector3<f64>,
-    /// A fitted feature's outline vertices' own heights (empty for a face's own plane or an
-    /// edge, whose heights are exact): a support vertex at one reads it, not the plane's.
-    own_heights: Points<f64>,
+    /// A fitted feature's outline vertices' own heights, `None` for a vertex that is not one of
+    /// its points (empty for a face's own plane or an edge, whose heights are exact): a support
+    /// vertex at one reads it, not the plane's.
+    own_heights: Points<Option<f64>>,
 }
 
 /// Which body of the pair a feature is of: A's faces B against the normal, B's faces A along it.
@@ -664,7 +665,7 @@ impl Surface {
                         plane
                             .iter()
                             .position(|q| q == v)
-                            .map_or(f64::NAN, |k| height(&points[k]))
+                            .map(|k| height(&points[k]))
                     })
                     .collect();
                 let hull = hull.or_else(|| ConvexPolygon::from_points(&plane).ok())?;
@@ -696,12 +697,10 @@ impl Surface {
 
     fn height(&self, p: &Point2<f64>) -> f64 {
         // A vertex where an edge was clipped at one of the points is that point to rounding.
-        let own = (self.outline.iter().zip(&self.own_heights))
-            .find(|(v, h)| {
-                (*v - p).norm_squared() <= SAME_OWN_POINT * (1.0 + v.coords.norm_squared())
-                    && !h.is_nan()
-            })
-            .map(|(_, &h)| h);
+        let own = (self.outline.iter().zip(&self.own_heights)).find_map(|(v, &h)| {
+            let close = (v - p).norm_squared() <= SAME_OWN_POINT * (1.0 + v.coords.norm_squared());
+            h.filter(|_| close)
+        });
         own.unwrap_or_else(|| self.coefficients.dot(&Vector3::new(1.0, p.x, p.y)))
     }
 
