@@ -29,6 +29,7 @@
 use nalgebra::UnitQuaternion;
 
 use crate::contact_set::Pose;
+use crate::speculative::Travel;
 
 /// Relative rounding allowance of the bound, as a fraction of the pair's size (the centres'
 /// distance and both reaches): the tests' separations sum a few products of coordinates of that
@@ -54,6 +55,9 @@ pub(crate) struct Placement {
     pub size: f64,
     /// Largest distance of the body's shape from its centre of mass.
     pub reach: f64,
+    /// How far its points may move in the coming step: a pair's margin grows by their
+    /// closing ([`crate::speculative`]).
+    pub travel: Travel,
 }
 
 /// A pair found apart along an axis, with the poses it was found at.
@@ -194,6 +198,7 @@ mod tests {
                     pose: (centre + shift, turn(&mut uniform, most) * turned),
                     size: reach,
                     reach,
+                    travel: Travel::default(),
                 }
             };
             let (now_a, now_b) = (
@@ -249,6 +254,7 @@ mod tests {
             pose: (centre, turn),
             size: reach,
             reach,
+            travel: Travel::default(),
         };
         let turned = (
             cube_at.0,

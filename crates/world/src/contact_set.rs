@@ -106,11 +106,9 @@ impl Meeting<'_> {
         match find(self.apart, |a| a.0, &mut self.cursors.1, pair) {
             Some(k) => {
                 let (_, apart, met) = &mut self.apart[k];
-                let still = apart.still_apart(
-                    &self.placements[pair.0],
-                    &self.placements[pair.1],
-                    self.margin,
-                );
+                let (a, b) = (&self.placements[pair.0], &self.placements[pair.1]);
+                let margin = self.margin + a.travel.closing(&b.travel);
+                let still = apart.still_apart(a, b, margin);
                 *met |= still;
                 still
             }

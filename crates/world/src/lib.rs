@@ -39,6 +39,7 @@ pub mod scene;
 mod settings;
 mod shape;
 mod sleep;
+mod speculative;
 mod support;
 mod timings;
 mod world;

@@ -10,7 +10,10 @@ use nalgebra::{Matrix3, Point3, UnitQuaternion, Vector3};
 use parry3d_f64::math::{Pose, Rotation, Vector};
 use parry3d_f64::query::details::contact_support_map_support_map_with_params;
 use parry3d_f64::query::gjk::{GJKResult, VoronoiSimplex};
-use parry3d_f64::query::{ContactManifold, DefaultQueryDispatcher, PersistentQueryDispatcher};
+use parry3d_f64::query::{
+    ContactManifold, DefaultQueryDispatcher, PersistentQueryDispatcher, ShapeCastOptions,
+    cast_shapes,
+};
 use parry3d_f64::shape::{ConvexPolyhedron, Cuboid, SharedShape};
 
 use crate::HullMesh;
@@ -194,6 +197,34 @@ fn polytope(hull: &ConvexPolyhedron) -> Option<Polytope> {
         })
         .collect();
     Polytope::new(vertices, &faces, &edges)
+}
+
+/// Whether `a` and `b`, from `pose_a` and `pose_b` and moving on at the linear velocities
+/// `velocity_a` and `velocity_b`, come within `allowance` of each other within `dt`: parry's
+/// linear shape cast. The allowance stands for what the bodies' turns may add; a pair parry
+/// cannot cast counts as meeting.
+pub(crate) fn meet_within(
+    (a, pose_a, velocity_a): (&Collider, &Pose, &Vector3<f64>),
+    (b, pose_b, velocity_b): (&Collider, &Pose, &Vector3<f64>),
+    allowance: f64,
+    dt: f64,
+) -> bool {
+    let options = ShapeCastOptions {
+        max_time_of_impact: dt,
+        target_distance: allowance,
+        stop_at_penetration: true,
+        compute_impact_geometry_on_penetration: false,
+    };
+    cast_shapes(
+        &(*pose_a * a.local),
+        to_glam(velocity_a),
+        &*a.shape,
+        &(*pose_b * b.local),
+        to_glam(velocity_b),
+        &*b.shape,
+        options,
+    )
+    .map_or(true, |hit| hit.is_some())
 }
 
 /// The unit contact normal between two colliders, pointing from `b` into `a`, when they are

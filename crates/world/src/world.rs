@@ -51,7 +51,7 @@ pub struct World {
     /// The position pass's answer in the last step: per body, the pseudo-velocities that move
     /// its position only. Empty on steps without biases.
     pub(crate) pseudo_velocities: Vec<SolverBody>,
-    collision_workspace: CollisionWorkspace,
+    pub(crate) collision_workspace: CollisionWorkspace,
     /// The islands of touching dynamic bodies, for sleeping.
     islands: Islands,
     /// Scratch: the velocity solve's answer set aside before the shock pass, to be put back if
@@ -241,7 +241,7 @@ impl World {
     pub fn step(&mut self, dt: f64) -> Result<(), StepError> {
         check_time_step(dt)?;
         let start = Instant::now();
-        self.detect();
+        self.detect(dt);
         self.wake_islands();
         let collided = Instant::now();
         self.build_problem(dt)?;
@@ -285,7 +285,7 @@ impl World {
     /// ```
     pub fn prepare_step(&mut self, dt: f64) -> Result<&Problem<ContactProjection>, StepError> {
         check_time_step(dt)?;
-        self.detect();
+        self.detect(dt);
         self.wake_islands();
         self.build_problem(dt)?;
         Ok(&self.problem)
@@ -315,14 +315,16 @@ impl World {
         }
     }
 
-    /// Collision: the contact set brought to the current positions, highest contact first.
-    fn detect(&mut self) {
+    /// Collision: the contact set brought to the current positions for a step of `dt`,
+    /// highest contact first.
+    fn detect(&mut self, dt: f64) {
         let collision = CollisionSettings::of(&self.settings);
         collision::detect(
             &self.bodies,
             &self.geometry,
             &collision,
             &self.gravity,
+            dt,
             &mut self.collision_workspace,
             &mut self.contact_set,
         );
