@@ -1,8 +1,9 @@
 //! Pairs found apart, and how long they stay so: the bound that lets collision skip them.
 //!
-//! The broad phase's boxes are padded by the margin and cover a turned box's corners, so a
-//! resting pile of 1000 cubes has some 2,000 pairs a step whose boxes overlap while the bodies
-//! are apart, about as many as it has contacts; each used to be tested afresh every step. The
+//! The broad phase's boxes are padded by the margin (and by how far the body may move in the
+//! step, [`crate::speculative`]) and cover a turned box's corners, so a resting pile of 1000
+//! cubes has some 2,000 pairs a step whose boxes overlap while the bodies are apart, about as
+//! many as it has contacts; each used to be tested afresh every step. The
 //! separating-axis tests find such a pair apart along a *face* normal of one body, by a
 //! separation `s` beyond the margin, and answer "apart" whenever some face normal separates by
 //! more than the margin. That face's normal turns with its body, and in the face owner's frame

@@ -59,7 +59,7 @@ impl Travel {
 
     /// How far two bodies with these travels may turn against each other (rad): a pair's
     /// feature angle grows by this, so a face turning onto the other body within the step is
-    /// found as a face, its far edge a landing point.
+    /// found as a face, whose corners off its bearing part get landing blocks.
     pub(crate) fn turning(&self, other: &Travel) -> f64 {
         (self.spin - other.spin).norm()
     }
