@@ -33,7 +33,9 @@ pub struct Contact {
     /// the touching feature would land if the body turned: the face model's landing points
     /// (usually none). A cylinder resting on the lowest point of its cap's rim touches at that
     /// point alone, yet as it wobbles the lowest point runs round the rim; held at one point,
-    /// the rim beside it went 1 cm into the floor. Read by the face model only.
+    /// the rim beside it went 1 cm into the floor. A polyhedron closing on the other body
+    /// faster than the margin a step has its vertices within that closing distance here too,
+    /// where the turn an impact gives it would swing them down. Read by the face model only.
     pub landing: Vec<Landing>,
 }
 

@@ -12,8 +12,9 @@
 //!   within the feature angle stands off at one side. 6 rows per face, whatever its vertex
 //!   count; a segment's block has 5 (the tilt across it: [`segment`]) and a point's 3 (no
 //!   torque). Points standing off the support within the margin, where it would land as it
-//!   turns (a tilted face's far corners, a cylinder's rim beside the one point it rests on,
-//!   [`Contact::landing`]), and the vertices a support tipping about its centre would sink,
+//!   turns (a tilted face's far corners, a cylinder's rim beside the one point it rests on, a
+//!   fast polyhedron's vertices within its step's closing distance, [`Contact::landing`]), and
+//!   the vertices a support tipping about its centre would sink,
 //!   get a point's 3 rows each, which let them close their gap within the step and no more.
 //!
 //! Rows are written into a [`tatami_lcp::Problem`] whose blocks carry a [`ContactProjection`],
