@@ -317,15 +317,15 @@ fn speculative(
     }
 }
 
-/// Whether a point of support `s` between bodies `a` and `b` closes its gap within `dt` at the
-/// bodies' velocities, the relative velocity `gravity`'s step may add included.
-fn closes_in_step(a: &Body, b: &Body, s: &Support, dt: f64, gravity: f64) -> bool {
-    let n = &s.frame.normal;
+/// Whether a point of support `s` between bodies `a` and `b` closes its gap within the step
+/// of `reach` at the bodies' velocities, the relative velocity its gravity may add included.
+fn closes_in_step(a: &Body, b: &Body, s: &Support, reach: &Reach) -> bool {
+    let (dt, n) = (reach.dt, &s.frame.normal);
     let velocity = |body: &Body, p: &nalgebra::Point3<f64>| {
         body.linear_velocity() + body.angular_velocity().cross(&(p - body.centre))
     };
     let pulled = if a.is_dynamic() != b.is_dynamic() {
-        gravity * dt
+        reach.gravity * dt
     } else {
         0.0
     };
@@ -450,7 +450,7 @@ fn contact_of(
     // 1 cm over a box's edge left it at 8.2 m/s, turned 7°).
     let speculative = s.depths.iter().all(|&d| d < -reach.margin);
     if speculative
-        && !(closes_in_step(a, b, &s, reach.dt, reach.gravity)
+        && !(closes_in_step(a, b, &s, reach)
             && meet_within(
                 (a, &geometry[i].collider, &poses[i]),
                 (b, &geometry[j].collider, &poses[j]),

@@ -410,9 +410,11 @@ impl Outline {
     }
 }
 
-/// [`Outline::landing`] of a polyhedron with `vertices` (body frame) and `radius`, at `pose`:
-/// its vertices that stand back from its touching feature by at most `band` (m) along the unit
-/// `direction`, nearest first, at most [`LANDING_POINTS_PER_SIDE`] twice.
+/// [`Outline::landing`] of a polyhedron with `vertices` (body frame) and `radius`, its origin
+/// at `origin` turned by `rotation`: its vertices that stand back from its touching feature by
+/// at most `band` (m) along the unit `direction`, nearest first (ties in vertex order), at most
+/// [`LANDING_POINTS_PER_SIDE`] twice. Kept in a fixed array while they are found: collision
+/// allocates nothing per pair here.
 fn turning_landing(
     vertices: &[Vector3<f64>],
     radius: f64,
@@ -433,19 +435,28 @@ fn turning_landing(
         })
         .fold(f64::NEG_INFINITY, f64::max);
     let eps = 1e-9 * radius;
-    let mut standing: Vec<(f64, u32)> = (0u32..)
-        .zip(vertices)
-        .filter(|(id, _)| feature.points.iter().all(|p| p.id != *id))
-        .map(|(id, v)| (extreme - v.dot(&local), id))
-        .filter(|&(back, _)| back > eps && back <= band)
-        .collect();
-    standing.sort_by(|x, y| x.0.total_cmp(&y.0));
-    feature.landing.extend(
-        (standing.iter().take(2 * LANDING_POINTS_PER_SIDE)).map(|&(_, id)| FeaturePoint {
+    // The nearest so far, by how far each stands back, in order.
+    let mut nearest = [(0.0, 0u32); 2 * LANDING_POINTS_PER_SIDE];
+    let mut len = 0;
+    for (id, v) in (0u32..).zip(vertices) {
+        let back = extreme - v.dot(&local);
+        if back <= eps || back > band || feature.points.iter().any(|p| p.id == id) {
+            continue;
+        }
+        // After every one standing back as little or less.
+        let at = nearest[..len].partition_point(|&(b, _)| b <= back);
+        if at < nearest.len() {
+            len = (len + 1).min(nearest.len());
+            nearest.copy_within(at..len - 1, at + 1);
+            nearest[at] = (back, id);
+        }
+    }
+    feature
+        .landing
+        .extend(nearest[..len].iter().map(|&(_, id)| FeaturePoint {
             point: origin + rotation * vertices[id as usize],
             id,
-        }),
-    );
+        }));
 }
 
 /// Drops from `points` every point that another lies above more steeply than the feature
