@@ -124,6 +124,7 @@ pub(crate) fn bearing_part(contact: &Contact, within: f64) -> Option<Contact> {
         material: contact.material,
         // The face model reads them off the whole contact.
         landing: Vec::new(),
+        bounce_speed: contact.bounce_speed,
     })
 }
 
@@ -147,6 +148,7 @@ mod tests {
             depths,
             material: Material::new(0.5, 0.5, 0.0).unwrap(),
             landing: Vec::new(),
+            bounce_speed: 0.0,
         }
     }
 

@@ -37,6 +37,13 @@ pub struct Contact {
     /// faster than the margin a step has its vertices within that closing distance here too,
     /// where the turn an impact gives it would swing them down. Read by the face model only.
     pub landing: Vec<Landing>,
+    /// The separation speed (m/s, ≥ 0) the contact's landed points bounce at in this step: a
+    /// bouncing pair is landed on the surface from a gap first, without a bounce, and bounced on
+    /// the next step at restitution times the speed it met at, so the bounce starts from the
+    /// surface, not from the gap (see
+    /// [`ContactSettings::has_landed`](crate::ContactSettings::has_landed)); 0 when no landing
+    /// is to be bounced. Set by the world; 0 for a contact built by hand.
+    pub bounce_speed: f64,
 }
 
 /// A point of a contact's plane where a body stands off the other ([`Contact::landing`]).
@@ -57,8 +64,8 @@ impl Contact {
             .fold(f64::NEG_INFINITY, f64::max)
     }
 
-    /// Checks that there is one finite depth per support vertex, and that the landing points
-    /// are finite.
+    /// Checks that there is one finite depth per support vertex, that the landing points are
+    /// finite, and that the bounce speed is finite and ≥ 0.
     pub(crate) fn validate_depths(&self) -> Result<(), ContactError> {
         let vertices = self.support.vertices().len();
         if self.depths.len() != vertices {
@@ -75,6 +82,9 @@ impl Contact {
             return Err(ContactError::NonFinite {
                 what: "landing point",
             });
+        }
+        if !(self.bounce_speed.is_finite() && self.bounce_speed >= 0.0) {
+            return Err(ContactError::InvalidBounceSpeed(self.bounce_speed));
         }
         Ok(())
     }
@@ -134,6 +144,7 @@ mod tests {
                 restitution: 0.0,
             },
             landing: Vec::new(),
+            bounce_speed: 0.0,
         };
         assert!(contact(0.5).validate(2).is_ok());
         for bad in [f64::NAN, -0.1, f64::INFINITY] {

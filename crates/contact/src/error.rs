@@ -16,6 +16,9 @@ pub enum ContactError {
     /// A restitution coefficient was outside `[0, 1]` or not finite.
     #[error("restitution must be finite and in [0, 1], got {0}")]
     InvalidRestitution(f64),
+    /// A contact's bounce speed was negative or not finite.
+    #[error("bounce speed must be finite and ≥ 0, got {0}")]
+    InvalidBounceSpeed(f64),
     /// A contact normal was zero or not finite.
     #[error("contact normal must be finite and non-zero, got ({0}, {1}, {2})")]
     InvalidNormal(f64, f64, f64),

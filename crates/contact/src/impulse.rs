@@ -34,6 +34,7 @@ use tatami_lcp::Row;
 ///     depths: vec![0.0; 4],
 ///     material: Material::new(0.5, 0.5, 0.0)?,
 ///     landing: Vec::new(),
+///     bounce_speed: 0.0,
 /// };
 /// let build = |contact: &Contact| -> Result<Problem<_>, tatami_contact::ContactError> {
 ///     let mut problem = Problem { bodies: vec![SolverBody::fixed(); 2], ..Default::default() };

@@ -41,6 +41,7 @@
 //!     depths: vec![0.0; 4],
 //!     material: Material::new(0.5, 0.5, 0.0)?,
 //!     landing: Vec::new(),
+//!     bounce_speed: 0.0,
 //! };
 //! let mut problem = Problem { bodies: vec![cube, SolverBody::fixed()], ..Default::default() };
 //! ContactModel::Vertex.build(&contact, 0.01, &ContactSettings::default(), &mut problem)?;

@@ -90,6 +90,7 @@ pub(crate) fn build(
         let target = normal_target(
             depth,
             normal_speed,
+            contact.bounce_speed,
             contact.material.restitution,
             dt,
             settings,

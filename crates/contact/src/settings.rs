@@ -218,6 +218,33 @@ impl Default for ContactSettings {
     }
 }
 
+/// The share of the slop within which a gap counts as closed for a bounce
+/// ([`ContactSettings::has_landed`]): 0.1 mm by default, far under the slop, and over the few
+/// micrometres by which a landing's solve may leave the bodies apart (its rows stop within
+/// 0.1 mm/s, 2 µm a step at 60 Hz).
+const LANDED_SHARE_OF_SLOP: f64 = 0.05;
+
+impl ContactSettings {
+    /// Whether a point of a contact at `depth` (> 0 overlapping, < 0 apart) has landed: only
+    /// then does it bounce. A point still apart is landed on the surface first, its gap a
+    /// target it may close in the step and no more, and bounced on the next step at
+    /// [`Contact::bounce_speed`](crate::Contact::bounce_speed): bounced off the gap, a ball
+    /// dropped 1 m with restitution 0.8 at 60 Hz rose 22 mm too high, up to a step's approach
+    /// above the floor, and at 1 kHz one bounced 1.1 mm above the floor without touching it.
+    ///
+    /// ```
+    /// use tatami_contact::ContactSettings;
+    ///
+    /// let settings = ContactSettings::default();
+    /// assert!(settings.has_landed(0.001));
+    /// assert!(settings.has_landed(-0.00005));
+    /// assert!(!settings.has_landed(-0.001));
+    /// ```
+    pub fn has_landed(&self, depth: f64) -> bool {
+        depth >= -LANDED_SHARE_OF_SLOP * self.slop
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use proptest::prelude::*;

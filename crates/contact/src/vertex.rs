@@ -43,6 +43,7 @@ pub(crate) fn build_point(
     let target = normal_target(
         depth,
         normal_speed,
+        contact.bounce_speed,
         contact.material.restitution,
         dt,
         settings,

@@ -104,6 +104,7 @@ fn contact_problem(case: &Case, support: ConvexPolygon) -> Problem<ContactProjec
         depths: vec![0.0; count],
         material: Material::new(case.mu, case.mu, 0.0).unwrap(),
         landing: Vec::new(),
+        bounce_speed: 0.0,
     };
     let inertia_turn = Rotation3::from_scaled_axis(Vector3::from(case.inertia_turn));
     let inverse_inertia = inertia_turn

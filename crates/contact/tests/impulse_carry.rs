@@ -32,6 +32,7 @@ fn contact(support: ConvexPolygon, turn: Rotation3<f64>, centre_a: Point3<f64>) 
         depths: vec![0.0; count],
         material: Material::new(0.5, 0.5, 0.0).unwrap(),
         landing: Vec::new(),
+        bounce_speed: 0.0,
     }
 }
 

@@ -49,6 +49,7 @@ fn cube_on_ground(
         depths: vec![0.0; 4],
         material: Material::new(MU, MU, 0.0).unwrap(),
         landing: Vec::new(),
+        bounce_speed: 0.0,
     };
     let mut cube = SolverBody::fixed();
     cube.inv_mass = 1.0;

@@ -508,6 +508,11 @@ impl Body {
         self.angular_velocity
     }
 
+    /// Velocity of the body's point at `p` (world).
+    pub(crate) fn velocity_at(&self, p: &Point3<f64>) -> Vector3<f64> {
+        self.linear_velocity + self.angular_velocity.cross(&(p - self.centre))
+    }
+
     /// Inertia tensor about the centre of mass, world axes.
     pub fn inertia_world(&self) -> Matrix3<f64> {
         let r = self.rotation.to_rotation_matrix();

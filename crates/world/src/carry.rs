@@ -173,6 +173,7 @@ mod tests {
             depths: vec![1e-3, 1e-3, 5e-4, 5e-4],
             material: Material::new(0.5, 0.5, 0.0).unwrap(),
             landing: Vec::new(),
+            bounce_speed: 0.0,
         };
         (contact, was)
     }

@@ -181,7 +181,7 @@ pub(crate) fn detect(
     }));
     let placements = &*placements;
     let find = |features: &mut Features, pair: (usize, usize), recycled: Recycled| {
-        let reach = speculative((bodies, geometry, placements), pair, plain, base_angle);
+        let reach = speculative((geometry, placements), pair, plain, base_angle);
         contact_of(
             bodies,
             geometry,
@@ -288,21 +288,18 @@ impl Reach {
 
 /// Pair `(i, j)`'s reach: the pass's `plain` one (no closing, no angle of its own), its margin
 /// and the feature angle `angle` grown by how far its bodies may close and turn against each
-/// other in the step ([`crate::speculative`]). Two kinds of pair keep the plain reach:
-/// - a bouncing pair: a speculative contact would bounce it off the gap, up to a step's
-///   approach short of the other body (a ball dropped 1 m at 60 Hz with restitution 0.8
-///   bounced 22 mm too high, 3.4% of `e² h`; met after the impact, within 1.5 mm);
-/// - a pair with a cylinder, whose normal comes from a rounded core ([`Collider::is_rounded`]):
-///   searched for farther off, GJK's normal on the core depended on where it started (4° apart
-///   between the last normal and none, a hull found touching from one and not from the other).
+/// other in the step ([`crate::speculative`]). A pair with a cylinder keeps the plain reach: its
+/// normal comes from a rounded core ([`Collider::is_rounded`]), and searched for farther off,
+/// GJK's normal on the core depended on where it started (4° apart between the last normal and
+/// none, a hull found touching from one and not from the other). A bouncing pair lands first
+/// and bounces on the next step ([`crate::impact`]).
 fn speculative(
-    (bodies, geometry, placements): (&[Body], &[BodyGeometry], &[Placement]),
+    (geometry, placements): (&[BodyGeometry], &[Placement]),
     (i, j): (usize, usize),
     plain: Reach,
     angle: f64,
 ) -> Reach {
-    let bouncing = bodies[i].restitution > 0.0 || bodies[j].restitution > 0.0;
-    if bouncing || geometry[i].collider.is_rounded() || geometry[j].collider.is_rounded() {
+    if geometry[i].collider.is_rounded() || geometry[j].collider.is_rounded() {
         return plain;
     }
     let (a, b) = (&placements[i].travel, &placements[j].travel);
@@ -321,9 +318,6 @@ fn speculative(
 /// of `reach` at the bodies' velocities, the relative velocity its gravity may add included.
 fn closes_in_step(a: &Body, b: &Body, s: &Support, reach: &Reach) -> bool {
     let (dt, n) = (reach.dt, &s.frame.normal);
-    let velocity = |body: &Body, p: &nalgebra::Point3<f64>| {
-        body.linear_velocity() + body.angular_velocity().cross(&(p - body.centre))
-    };
     let pulled = if a.is_dynamic() != b.is_dynamic() {
         reach.gravity * dt
     } else {
@@ -336,7 +330,7 @@ fn closes_in_step(a: &Body, b: &Body, s: &Support, reach: &Reach) -> bool {
         .any(|(vertex, &depth)| {
             let p = s.frame.to_world(vertex);
             // `n` points from B into A: A closes on B against it.
-            let closing = -(velocity(a, &p) - velocity(b, &p)).dot(n) + pulled;
+            let closing = -(a.velocity_at(&p) - b.velocity_at(&p)).dot(n) + pulled;
             closing * dt >= -depth
         })
 }
@@ -475,6 +469,8 @@ fn contact_of(
         depths: s.depths,
         material: combine(a, b),
         landing: s.landing,
+        // Handed on from the pair's last contact by the contact set ([`crate::impact`]).
+        bounce_speed: 0.0,
     };
     Found::Touching((contact, s.features, found_at))
 }
@@ -552,11 +548,7 @@ mod tests {
                         continue;
                     }
                     let reach = speculative(
-                        (
-                            &world.bodies,
-                            &world.geometry,
-                            &world.collision_workspace.placements,
-                        ),
+                        (&world.geometry, &world.collision_workspace.placements),
                         (i, j),
                         plain,
                         world.settings.feature_angle,
@@ -616,11 +608,7 @@ mod tests {
             for held in world.contacts() {
                 let pair = (held.body_a.0, held.body_b.0);
                 let reach = speculative(
-                    (
-                        &world.bodies,
-                        &world.geometry,
-                        &world.collision_workspace.placements,
-                    ),
+                    (&world.geometry, &world.collision_workspace.placements),
                     pair,
                     plain,
                     world.settings.feature_angle,

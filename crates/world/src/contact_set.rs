@@ -150,6 +150,9 @@ struct PairState {
     touching: bool,
     /// The face model's bearing part of the contact, while the contact is unchanged.
     bearing: Option<Bearing>,
+    /// How fast this step's contact lands the bodies on each other, for the next step's
+    /// bounce ([`crate::impact`]).
+    landing_speed: f64,
 }
 
 /// What the last solve left of a pair, for the next warm start.
@@ -351,9 +354,25 @@ impl ContactSet {
                 last: Solved::Nothing,
                 touching: true,
                 bearing: None,
+                landing_speed: 0.0,
             },
         });
         self.met.push(true);
+    }
+
+    /// Hands each pair's landing on ([`crate::impact`]): `hand_on`, given the pair's contact and
+    /// the speed its last contact landed it at, returns the contact's bounce speed and the
+    /// speed it lands the pair at, kept for the next step. A kept bearing part made with
+    /// another bounce speed is dropped.
+    pub(crate) fn hand_on_impacts(&mut self, hand_on: impl Fn(&Contact, f64) -> (f64, f64)) {
+        for Entry { contact, state } in &mut self.entries {
+            let (bounce_speed, landing_speed) = hand_on(contact, state.landing_speed);
+            if contact.bounce_speed != bounce_speed {
+                contact.bounce_speed = bounce_speed;
+                state.bearing = None;
+            }
+            state.landing_speed = landing_speed;
+        }
     }
 
     /// Keeps pair `pair`, met by the broad phase and found apart, to be skipped while it stays
@@ -859,6 +878,7 @@ mod tests {
                 support,
                 material: Material::new(0.5, 0.5, 0.0).expect("a material"),
                 landing: Vec::new(),
+                bounce_speed: 0.0,
             }
         };
         let rows = |set: &mut ContactSet| {

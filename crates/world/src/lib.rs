@@ -30,6 +30,7 @@ mod contact_set;
 mod control;
 pub mod dropped;
 mod error;
+mod impact;
 mod load_estimate;
 mod parallel;
 mod parry_bridge;

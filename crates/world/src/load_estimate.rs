@@ -109,6 +109,7 @@ mod tests {
             depths: vec![0.0],
             material: Material::new(0.5, 0.5, 0.0).unwrap(),
             landing: Vec::new(),
+            bounce_speed: 0.0,
         }
     }
 

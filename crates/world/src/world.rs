@@ -12,6 +12,7 @@ use tatami_lcp::{DisjointSets, LcpError, Problem, Row, SolverBody};
 use crate::body::{BodyKind, Motion};
 use crate::collision::{self, BodyGeometry, CollisionSettings, CollisionWorkspace};
 use crate::contact_set::ContactSet;
+use crate::impact::Impacts;
 use crate::parallel;
 use crate::parry_bridge::Collider;
 use crate::sleep::Islands;
@@ -328,6 +329,16 @@ impl World {
             &mut self.collision_workspace,
             &mut self.contact_set,
         );
+        let impacts = Impacts {
+            bodies: &self.bodies,
+            gravity: &self.gravity,
+            dt,
+            settings: &self.settings.contact,
+        };
+        self.contact_set.hand_on_impacts(|contact, met_at| {
+            let bounce = impacts.bounce_speed(contact, met_at);
+            (bounce, impacts.landing_speed(contact, met_at))
+        });
     }
 
     /// Contact rows from the velocities at the start of the step, then gravity's impulse.
