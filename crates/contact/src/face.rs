@@ -446,7 +446,8 @@ pub(crate) fn build(
         for (vertex, &depth) in contact.support.vertices().iter().zip(&contact.depths) {
             if depth < cut {
                 let gap = depth - landing_level(cut);
-                vertex::build_point(contact, vertex, gap, dt, settings, problem, biases);
+                let at = (vertex, gap, contact.bounce_speed);
+                vertex::build_point(contact, at, dt, settings, problem, biases);
             }
         }
     }
@@ -458,7 +459,7 @@ pub(crate) fn build(
     let landing = contact.landing.iter().map(|l| (&l.point, &l.depth));
     for (point, &depth) in tipping.chain(landing) {
         let gap = (depth - deepest).min(0.0);
-        vertex::build_point(contact, point, gap, dt, settings, problem, biases);
+        vertex::build_point(contact, (point, gap, 0.0), dt, settings, problem, biases);
     }
 }
 

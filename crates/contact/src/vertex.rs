@@ -22,15 +22,18 @@ pub(crate) fn build(
     biases: &mut Vec<f64>,
 ) {
     for (vertex, &depth) in contact.support.vertices().iter().zip(&contact.depths) {
-        build_point(contact, vertex, depth, dt, settings, problem, biases);
+        let at = (vertex, depth, contact.bounce_speed);
+        build_point(contact, at, dt, settings, problem, biases);
     }
 }
 
-/// Appends the 3-row block of one point of `contact`'s plane, `vertex` in its frame, at `depth`.
+/// Appends the 3-row block of one point of `contact`'s plane, `vertex` in its frame, at `depth`,
+/// whose normal row bounces at `bounce_speed` once it meets the other body
+/// ([`Contact::bounce_speed`]: the contact's for a point of its support, 0 for the face model's
+/// landing blocks, which catch a turn and bounce on their own approach alone).
 pub(crate) fn build_point(
     contact: &Contact,
-    vertex: &Point2<f64>,
-    depth: f64,
+    (vertex, depth, bounce_speed): (&Point2<f64>, f64, f64),
     dt: f64,
     settings: &ContactSettings,
     problem: &mut Problem<ContactProjection>,
@@ -43,7 +46,7 @@ pub(crate) fn build_point(
     let target = normal_target(
         depth,
         normal_speed,
-        contact.bounce_speed,
+        bounce_speed,
         contact.material.restitution,
         dt,
         settings,

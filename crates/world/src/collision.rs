@@ -288,27 +288,24 @@ impl Reach {
 
 /// Pair `(i, j)`'s reach: the pass's `plain` one (no closing, no angle of its own), its margin
 /// and the feature angle `angle` grown by how far its bodies may close and turn against each
-/// other in the step ([`crate::speculative`]). A pair with a cylinder keeps the plain reach: its
-/// normal comes from a rounded core ([`Collider::is_rounded`]), and searched for farther off,
-/// GJK's normal on the core depended on where it started (4° apart between the last normal and
-/// none, a hull found touching from one and not from the other). A bouncing pair lands first
-/// and bounces on the next step ([`crate::impact`]).
+/// other in the step ([`crate::speculative`]). A pair with a cylinder keeps its feature angle: a
+/// rolling cylinder turns by `v dt / r` a step, and its side line grown by that took in points
+/// beside it, which braked a cylinder rolling down a ramp (2.96 m/s against the closed form's
+/// 3.38). A bouncing pair lands first and bounces on the next step ([`crate::impact`]).
 fn speculative(
     (geometry, placements): (&[BodyGeometry], &[Placement]),
     (i, j): (usize, usize),
     plain: Reach,
     angle: f64,
 ) -> Reach {
-    if geometry[i].collider.is_rounded() || geometry[j].collider.is_rounded() {
-        return plain;
-    }
     let (a, b) = (&placements[i].travel, &placements[j].travel);
     let turning = a.turning(b);
+    let rounded = geometry[i].collider.is_rounded() || geometry[j].collider.is_rounded();
     Reach {
         closing: a.closing(b),
         turns: a.turn + b.turn,
         // A turn under a tenth of the angle would change little, and costs the trigonometry.
-        angle: (turning > 0.1 * angle)
+        angle: (!rounded && turning > 0.1 * angle)
             .then(|| FeatureAngle::new((angle + turning).min(MAX_FEATURE_ANGLE))),
         ..plain
     }

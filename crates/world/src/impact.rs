@@ -61,9 +61,10 @@ impl Impacts<'_> {
     /// How fast `contact`'s bodies land on each other in this step, to bounce on the next (m/s;
     /// see the module doc for the integrator's speed): the fastest of its points still apart
     /// that close their gaps in the step — or `met_at`, the speed the pair's last contact met
-    /// at, when faster and no point has landed yet (a landing the solve left a little short of
-    /// the surface lands again, the speed kept). 0 for a pair that does not bounce, or whose
-    /// points apart do not close their gaps in the step.
+    /// at, when faster and no point has landed yet (a landing the solve left short of the
+    /// surface lands again, the speed kept). 0 for a pair that does not bounce, whose points
+    /// apart do not close their gaps in the step, or that bounces in this step (its contact has
+    /// a bounce speed and a point landed or closing: the contact models bounce both).
     pub(crate) fn landing_speed(&self, contact: &Contact, met_at: f64) -> f64 {
         if contact.material.restitution == 0.0 {
             return 0.0;
@@ -91,7 +92,9 @@ impl Impacts<'_> {
                 Some(fastest.map_or(speed, |f| f.max(speed)))
             });
         let landed = contact.depths.iter().any(|&d| settings.has_landed(d));
+        let bounces = contact.bounce_speed > 0.0 && (landed || met.is_some());
         match met {
+            _ if bounces => 0.0,
             Some(speed) if landed => speed,
             Some(speed) => speed.max(met_at),
             None => 0.0,
