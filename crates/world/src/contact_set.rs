@@ -69,6 +69,9 @@ pub(crate) struct Recycled {
     /// Its normal, from B into A: where the search for the new one starts
     /// ([`crate::parry_bridge::contact_normal`]'s hint). `None` for a pair not held.
     pub normal: Option<Vector3<f64>>,
+    /// Whether the new contact keeps that normal: the old one landed the pair, to be bounced
+    /// along the normal it landed on ([`crate::impact`]).
+    pub keep_normal: bool,
 }
 
 /// A pair of bodies, `(a, b)` with `a < b`.
@@ -300,6 +303,7 @@ impl ContactSet {
             let recycled = Recycled {
                 depths: std::mem::take(&mut entry.contact.depths),
                 normal: Some(entry.contact.frame.normal),
+                keep_normal: entry.state.landing_speed > 0.0,
             };
             entry.state.bearing = None;
             entry.state.touching = match compute(scratch, pair, recycled) {

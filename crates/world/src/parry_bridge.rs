@@ -12,7 +12,7 @@ use parry3d_f64::query::details::contact_support_map_support_map_with_params;
 use parry3d_f64::query::gjk::{GJKResult, VoronoiSimplex};
 use parry3d_f64::query::{
     ContactManifold, DefaultQueryDispatcher, PersistentQueryDispatcher, ShapeCastOptions,
-    cast_shapes,
+    ShapeCastStatus, cast_shapes,
 };
 use parry3d_f64::shape::{ConvexPolyhedron, Cuboid, SharedShape};
 
@@ -199,32 +199,53 @@ fn polytope(hull: &ConvexPolyhedron) -> Option<Polytope> {
     Polytope::new(vertices, &faces, &edges)
 }
 
+/// How two colliders cast along their velocities meet within a step ([`meet_within`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Cast {
+    /// They do not come within the allowance.
+    Miss,
+    /// They do; with the unit normal from `b` into `a` where they first do, when the cast
+    /// gives one (not for a pair within the allowance from the start, nor one parry cannot
+    /// cast).
+    Meet(Option<Vector3<f64>>),
+}
+
 /// Whether `a` and `b`, from `pose_a` and `pose_b` and moving on at the linear velocities
-/// `velocity_a` and `velocity_b`, come within `allowance` of each other within `dt`: parry's
-/// linear shape cast. The allowance stands for what the bodies' turns may add; a pair parry
-/// cannot cast counts as meeting.
+/// `velocity_a` and `velocity_b`, come within `allowance` of each other within `dt`, and their
+/// normal there: parry's linear shape cast. The allowance stands for what the bodies' turns
+/// may add; a pair parry cannot cast counts as meeting.
 pub(crate) fn meet_within(
     (a, pose_a, velocity_a): (&Collider, &Pose, &Vector3<f64>),
     (b, pose_b, velocity_b): (&Collider, &Pose, &Vector3<f64>),
     allowance: f64,
     dt: f64,
-) -> bool {
+) -> Cast {
     let options = ShapeCastOptions {
         max_time_of_impact: dt,
         target_distance: allowance,
         stop_at_penetration: true,
         compute_impact_geometry_on_penetration: false,
     };
-    cast_shapes(
+    let pose_b = *pose_b * b.local;
+    let hit = cast_shapes(
         &(*pose_a * a.local),
         to_glam(velocity_a),
         &*a.shape,
-        &(*pose_b * b.local),
+        &pose_b,
         to_glam(velocity_b),
         &*b.shape,
         options,
-    )
-    .map_or(true, |hit| hit.is_some())
+    );
+    match hit {
+        Ok(None) => Cast::Miss,
+        Ok(Some(hit)) if hit.status == ShapeCastStatus::Converged => {
+            // B's outward normal, in its shape's frame: from B into A.
+            let normal = from_glam(pose_b.rotation * hit.normal2);
+            let length = normal.norm();
+            Cast::Meet((length.is_finite() && length > 0.0).then(|| normal / length))
+        }
+        Ok(Some(_)) | Err(_) => Cast::Meet(None),
+    }
 }
 
 /// The unit contact normal between two colliders, pointing from `b` into `a`, when they are
