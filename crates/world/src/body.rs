@@ -3,7 +3,7 @@
 use nalgebra::{Matrix3, Point3, UnitQuaternion, Vector3};
 use tatami_lcp::SolverBody;
 
-use crate::rotation::free_rotation;
+use crate::rotation::{PrincipalInertia, free_rotation};
 use crate::{Shape, WorldError};
 
 /// Density used when a dynamic body gives neither mass nor density: water, 1000 kg/m³.
@@ -225,6 +225,8 @@ pub struct Body {
     mass: f64,
     inertia_local: Matrix3<f64>,
     inv_inertia_local: Matrix3<f64>,
+    /// The inertia's principal frame, for the free rotation ([`free_rotation`]).
+    principal: PrincipalInertia,
     /// Centre of mass in the body frame.
     com_offset: Vector3<f64>,
     pub(crate) centre: Point3<f64>,
@@ -398,6 +400,7 @@ impl Body {
             mass,
             inertia_local,
             inv_inertia_local,
+            principal: PrincipalInertia::of(&inertia_local),
             com_offset,
             centre: desc.position + desc.rotation * com_offset,
             rotation: desc.rotation,
@@ -513,6 +516,15 @@ impl Body {
         self.linear_velocity + self.angular_velocity.cross(&(p - self.centre))
     }
 
+    /// The body-frame inertia tensor, its inverse and its principal frame.
+    fn inertia(&self) -> (&Matrix3<f64>, &Matrix3<f64>, &PrincipalInertia) {
+        (
+            &self.inertia_local,
+            &self.inv_inertia_local,
+            &self.principal,
+        )
+    }
+
     /// Inertia tensor about the centre of mass, world axes.
     pub fn inertia_world(&self) -> Matrix3<f64> {
         let r = self.rotation.to_rotation_matrix();
@@ -573,13 +585,8 @@ impl Body {
             };
         }
         let mut centre = self.centre + solved.linear_velocity * dt;
-        let (mut rotation, angular_velocity) = free_rotation(
-            &self.rotation,
-            &solved.angular_velocity,
-            &self.inertia_local,
-            &self.inv_inertia_local,
-            dt,
-        );
+        let (mut rotation, angular_velocity) =
+            free_rotation(&self.rotation, &solved.angular_velocity, self.inertia(), dt);
         if let Some(pseudo) = correction {
             centre += pseudo.linear_velocity * dt;
             rotation = UnitQuaternion::from_scaled_axis(pseudo.angular_velocity * dt) * rotation;
