@@ -153,5 +153,17 @@ mod tests {
                 Err(ContactError::InvalidFriction { .. })
             ));
         }
+        // A bounce speed is a separation speed: negative or not finite, it is refused.
+        let bouncing = |bounce_speed: f64| Contact {
+            bounce_speed,
+            ..contact(0.5)
+        };
+        assert!(bouncing(2.5).validate(2).is_ok());
+        for bad in [f64::NAN, -1.0, f64::INFINITY] {
+            assert!(matches!(
+                bouncing(bad).validate(2),
+                Err(ContactError::InvalidBounceSpeed(_))
+            ));
+        }
     }
 }

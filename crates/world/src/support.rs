@@ -252,11 +252,9 @@ impl Outline {
                 };
                 if d.z.abs() >= angle.cos || rim.is_none() {
                     feature.face_normal = Some(rotation * Vector3::z() * cap.signum());
-                    out.extend((0u32..).zip(cap_directions()).map(|(k, (cos, sin))| {
-                        place((
-                            Vector3::new(radius * cos, radius * sin, cap),
-                            k + top * rim_points,
-                        ))
+                    out.extend((0..CAP_VERTICES).map(|k| {
+                        let (id, v) = cap_vertex(*radius, cap, k);
+                        place((v, id))
                     }));
                 } else {
                     let rim = rim.unwrap_or_default();
@@ -406,13 +404,9 @@ fn rim_landing(
 ) {
     let d = rotation.inverse_transform_vector(direction);
     let cap = half_height.copysign(d.z);
-    let top = u32::from(cap > 0.0);
     let lowest = rotation.inverse_transform_vector(&(rim.point - origin));
     let extreme = lowest.dot(&d);
-    let vertex = |k: usize| {
-        let (cos, sin) = cap_directions()[k % CAP_VERTICES];
-        Vector3::new(radius * cos, radius * sin, cap)
-    };
+    let vertex = |k: usize| cap_vertex(radius, cap, k).1;
     // The first cap vertex counter-clockwise from the rim point (at or past its angle).
     let spacing = std::f64::consts::TAU / CAP_VERTICES as f64;
     let first =
@@ -440,10 +434,10 @@ fn rim_landing(
         let arc = &arc[..len];
         let picks = LANDING_POINTS_PER_SIDE.min(arc.len());
         feature.landing.extend((1..=picks).map(|j| {
-            let k = arc[(arc.len() * j).div_ceil(picks) - 1] % CAP_VERTICES;
+            let (id, v) = cap_vertex(radius, cap, arc[(arc.len() * j).div_ceil(picks) - 1]);
             FeaturePoint {
-                point: origin + rotation * vertex(k),
-                id: k as u32 + top * CAP_VERTICES as u32,
+                point: origin + rotation * v,
+                id,
             }
         }));
     }
@@ -453,14 +447,23 @@ fn rim_landing(
 /// `half_height`, with its id (as [`Outline::feature`] names cap vertices): where a fast
 /// cylinder's turn may swing its rims onto the other body ([`Outline::landing`]).
 fn turning_rims(radius: f64, half_height: f64) -> impl Iterator<Item = (u32, Vector3<f64>)> {
-    (0..2u32).flat_map(move |top| {
-        let cap = if top == 1 { half_height } else { -half_height };
-        (0..CAP_VERTICES).step_by(TURNING_RIM_STRIDE).map(move |k| {
-            let (cos, sin) = cap_directions()[k];
-            let id = k as u32 + top * CAP_VERTICES as u32;
-            (id, Vector3::new(radius * cos, radius * sin, cap))
+    [-half_height, half_height]
+        .into_iter()
+        .flat_map(move |cap| {
+            (0..CAP_VERTICES)
+                .step_by(TURNING_RIM_STRIDE)
+                .map(move |k| cap_vertex(radius, cap, k))
         })
-    })
+}
+
+/// Vertex `k` (taken modulo [`CAP_VERTICES`]) of the polygon inscribed in the rim of the cap at
+/// height `cap` (body frame; the top cap when above 0) of a cylinder of `radius`, with its id
+/// as [`Outline::feature`] names cap vertices: the bottom cap's first, then the top's.
+fn cap_vertex(radius: f64, cap: f64, k: usize) -> (u32, Vector3<f64>) {
+    let k = k % CAP_VERTICES;
+    let (cos, sin) = cap_directions()[k];
+    let id = k as u32 + u32::from(cap > 0.0) * CAP_VERTICES as u32;
+    (id, Vector3::new(radius * cos, radius * sin, cap))
 }
 
 /// Cap vertices between two of a cylinder's turning landing points ([`turning_rims`]): eight
