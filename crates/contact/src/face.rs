@@ -48,7 +48,7 @@ use tatami_geometry::{ConvexPolygon, PolygonKind, Sector};
 use tatami_lcp::{Block, LinearSet, Problem, Projection, Row, RowBound, SolverBody};
 
 use crate::bearing::{bearing_depth, bearing_part};
-use crate::jacobian::{angular_jacobian, point_jacobian, point_motion, twist_rate};
+use crate::jacobian::{angular_jacobian, face_weld, friction_motion, point_jacobian, twist_rate};
 use crate::segment::SegmentProjection;
 use crate::target::normal_target;
 use crate::vertex;
@@ -447,7 +447,7 @@ pub(crate) fn build(
             if depth < cut {
                 let gap = depth - landing_level(cut);
                 let at = (vertex, gap, contact.bounce_speed);
-                vertex::build_point(contact, at, dt, settings, problem, biases);
+                vertex::build_point(contact, at, None, dt, settings, problem, biases);
             }
         }
     }
@@ -459,7 +459,8 @@ pub(crate) fn build(
     let landing = contact.landing.iter().map(|l| (&l.point, &l.depth));
     for (point, &depth) in tipping.chain(landing) {
         let gap = (depth - deepest).min(0.0);
-        vertex::build_point(contact, (point, gap, 0.0), dt, settings, problem, biases);
+        let at = (point, gap, 0.0);
+        vertex::build_point(contact, at, None, dt, settings, problem, biases);
     }
 }
 
@@ -524,7 +525,15 @@ fn build_bearing(
         });
     let centre = contact.support.centroid();
     let p = frame.to_world(&centre);
-    let (normal_speed, slip) = point_motion(contact, &problem.bodies, &p);
+    // A face on a face keeps its material points together while they stick; an edge may roll.
+    let weld = face_weld(contact, &problem.bodies, dt, settings.slip_threshold);
+    let (normal_speed, slip, weld) = friction_motion(
+        contact,
+        &problem.bodies,
+        &p,
+        weld.as_ref(),
+        settings.slip_threshold,
+    );
     let twist_rate = twist_rate(contact, &problem.bodies);
     let r_bar = match settings.twist_radius {
         TwistRadius::Exact => contact.support.centroid_mean_distance(),
@@ -550,8 +559,14 @@ fn build_bearing(
     let start = problem.rows.len();
     let forces = [
         (point_jacobian(contact, &p, &frame.normal), target.velocity),
-        (point_jacobian(contact, &p, &frame.tangent1), 0.0),
-        (point_jacobian(contact, &p, &frame.tangent2), 0.0),
+        (
+            point_jacobian(contact, &p, &frame.tangent1),
+            weld.dot(&frame.tangent1),
+        ),
+        (
+            point_jacobian(contact, &p, &frame.tangent2),
+            weld.dot(&frame.tangent2),
+        ),
     ];
     let torques = torque_axes.iter().map(|axis| (angular_jacobian(axis), 0.0));
     problem.rows.extend(

@@ -17,6 +17,11 @@
 //!   the vertices a support tipping about its centre would sink,
 //!   get a point's 3 rows each, which let them close their gap within the step and no more.
 //!
+//! Friction rows target no slip; where a face rests on a face and the two bodies turn together
+//! (a box on a turntable), they target the relative velocity that keeps the faces' material
+//! points together over the step, which semi-implicit Euler's straight-line moves of the
+//! bodies' centres would otherwise part (see `jacobian::weld_velocity`).
+//!
 //! Rows are written into a [`tatami_lcp::Problem`] whose blocks carry a [`ContactProjection`],
 //! so one problem holds contacts of any model and any solver of the LCP crate can solve it.
 //!
