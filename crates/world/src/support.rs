@@ -702,7 +702,10 @@ fn identify(p: &Point2<f64>, a: &Surface, b: &Surface, tolerance: f64) -> Featur
 /// vertices where edges cross, at most the fold's deeper. Moved alone, it read every vertex
 /// but one too deep by up to the fold: a hull on the floor whose feature held a point 6.6 mm
 /// up read 4.4 mm where its lowest point was 1.0 mm in, and was pushed out until it floated
-/// 0.9 mm above the floor.
+/// 0.9 mm above the floor. Where the feature's deepest point is not an outline vertex (a
+/// shallow point under a face, inside the outline), the own heights would miss it — a hull
+/// whose bottom had a point 6 mm under its corners sank it all into the floor, its contact
+/// reading 0 — so every vertex reads the moved plane, which passes through that point.
 struct Surface {
     outline: Points<Point2<f64>>,
     kind: PolygonKind,
@@ -791,23 +794,32 @@ impl Surface {
                 Vector3::new(height(p0) - slope.dot(&q0.coords), slope.x, slope.y)
             }
             _ => {
-                // The outline's vertices are copies of the points: each keeps its own height.
-                own_heights = outline
-                    .iter()
-                    .map(|v| {
-                        plane
-                            .iter()
-                            .position(|q| q == v)
-                            .map(|k| height(&points[k]))
-                    })
-                    .collect();
-                let hull = hull.or_else(|| ConvexPolygon::from_points(&plane).ok())?;
-                let mut fit = least_squares_plane(&hull, &plane, points.iter().map(height))?;
                 // Heights grow towards A: A's points past the plane lie below it, B's above.
                 let towards_other = match side {
                     Side::A => -1.0,
                     Side::B => 1.0,
                 };
+                // The outline's vertices are copies of the points: each keeps its own height,
+                // unless the feature's deepest point is not one of them (a shallow point inside
+                // the outline, or on an edge between two of its vertices): the outline's own
+                // heights would miss it, and the plane, moved onto it, reads it instead.
+                let deepest = (0..points.len()).max_by(|&i, &j| {
+                    let depth = |k: usize| towards_other * height(&points[k]);
+                    depth(i).total_cmp(&depth(j))
+                })?;
+                if outline.contains(&plane[deepest]) {
+                    own_heights = outline
+                        .iter()
+                        .map(|v| {
+                            plane
+                                .iter()
+                                .position(|q| q == v)
+                                .map(|k| height(&points[k]))
+                        })
+                        .collect();
+                }
+                let hull = hull.or_else(|| ConvexPolygon::from_points(&plane).ok())?;
+                let mut fit = least_squares_plane(&hull, &plane, points.iter().map(height))?;
                 let past = plane
                     .iter()
                     .zip(points)

@@ -217,3 +217,76 @@ fn resting_hulls_read_their_true_depth_in_the_floor() {
     }
     assert!(compared > 1000, "only {compared} floor contacts compared");
 }
+
+/// A hull whose bottom is a square with a shallow point under its middle (the point 6 mm below
+/// the corners, 0.7 m out: faces 0.49° off flat, within the 1° feature angle, so the bottom is
+/// one feature) set on a ramp tilted 10° and turned 40°, under every model: its point stays
+/// within the 2 mm slop of the ramp's surface (plus 0.1 mm of the push's lag) for 3 s, and the
+/// contact reads the point's depth to 0.2 mm (as the hulls of the test above). The outline of
+/// the feature is the square; reading only its corners' own depths, the contact missed the
+/// point, which sank its whole 6 mm into the ramp while the contact read 0.
+#[test]
+fn a_hull_with_a_shallow_point_under_its_face_rests_on_the_point() {
+    use nalgebra::{Point3, Vector3};
+    use tatami_world::{BodyDesc, ContactModel, Shape};
+    let point_depth = 0.006;
+    let mut points = vec![Point3::new(0.0, 0.0, -point_depth)];
+    for (x, y) in [(-0.5, -0.5), (0.5, -0.5), (0.5, 0.5), (-0.5, 0.5)] {
+        points.extend([Point3::new(x, y, 0.0), Point3::new(x, y, 0.6)]);
+    }
+    let ramp = rotation([0.0, 0.0, 1.0], 40.0) * rotation([1.0, 0.0, 0.0], 10.0);
+    let normal = ramp * Vector3::z();
+    let slop = tatami_world::WorldSettings::default().contact.slop;
+    for model in [
+        ContactModel::Face,
+        ContactModel::Patch,
+        ContactModel::Vertex,
+    ] {
+        let start = normal * (point_depth + 0.001);
+        let mut world = World::builder()
+            .model(model)
+            .body(
+                BodyDesc::fixed(Shape::cuboid([10.0, 10.0, 1.0]))
+                    .position((-normal * 0.5).into())
+                    .rotation(ramp)
+                    .friction(0.8),
+            )
+            .body(
+                BodyDesc::dynamic(Shape::convex(points.clone()))
+                    .mass(1.0)
+                    .position(start.into())
+                    .rotation(ramp * rotation([0.0, 0.0, 1.0], 25.0))
+                    .friction(0.8),
+            )
+            .build()
+            .unwrap();
+        let dt = 1.0 / 60.0;
+        let (mut deepest, mut worst_reading) = (0.0_f64, 0.0_f64);
+        for _ in 0..180 {
+            world.step(dt).unwrap();
+            let body = &world.bodies()[1];
+            let depth = points
+                .iter()
+                .map(|p| {
+                    -(body.position() + body.rotation() * p.coords)
+                        .coords
+                        .dot(&normal)
+                })
+                .fold(f64::NEG_INFINITY, f64::max);
+            deepest = deepest.max(depth);
+            world.prepare_step(dt).unwrap();
+            for contact in world.contacts() {
+                worst_reading = worst_reading.max((contact.depth() - depth).abs());
+            }
+        }
+        println!("{model:?}: deepest {deepest:e} m, contact off by up to {worst_reading:e} m");
+        assert!(
+            deepest <= slop + 1e-4,
+            "{model:?}: {deepest} m into the ramp"
+        );
+        assert!(
+            worst_reading <= 2e-4,
+            "{model:?}: read {worst_reading} m off"
+        );
+    }
+}
