@@ -153,8 +153,10 @@ struct PairState {
     touching: bool,
     /// The face model's bearing part of the contact, while the contact is unchanged.
     bearing: Option<Bearing>,
-    /// How fast this step's contact lands the bodies on each other, for the next step's
-    /// bounce ([`crate::impact`]).
+    /// How fast the last step's contact landed the bodies on each other, for this step's
+    /// bounce ([`crate::impact`]): [`ContactSet::end_step`] sets it from `landing_speed`.
+    landed_at: f64,
+    /// How fast this step's contact lands them, handed on when the step ends.
     landing_speed: f64,
 }
 
@@ -303,7 +305,7 @@ impl ContactSet {
             let recycled = Recycled {
                 depths: std::mem::take(&mut entry.contact.depths),
                 normal: Some(entry.contact.frame.normal),
-                keep_normal: entry.state.landing_speed > 0.0,
+                keep_normal: entry.state.landed_at > 0.0,
             };
             entry.state.bearing = None;
             entry.state.touching = match compute(scratch, pair, recycled) {
@@ -358,6 +360,7 @@ impl ContactSet {
                 last: Solved::Nothing,
                 touching: true,
                 bearing: None,
+                landed_at: 0.0,
                 landing_speed: 0.0,
             },
         });
@@ -365,17 +368,27 @@ impl ContactSet {
     }
 
     /// Hands each pair's landing on ([`crate::impact`]): `hand_on`, given the pair's contact and
-    /// the speed its last contact landed it at, returns the contact's bounce speed and the
-    /// speed it lands the pair at, kept for the next step. A kept bearing part made with
-    /// another bounce speed is dropped.
+    /// the speed the last step's contact landed it at, returns the contact's bounce speed and
+    /// the speed it lands the pair at, handed on to the next step by
+    /// [`ContactSet::end_step`]. A kept bearing part made with another bounce speed is dropped.
+    /// Another collision pass before the step ends (`World::prepare_step`, then the step)
+    /// hands on the same landing again.
     pub(crate) fn hand_on_impacts(&mut self, hand_on: impl Fn(&Contact, f64) -> (f64, f64)) {
         for Entry { contact, state } in &mut self.entries {
-            let (bounce_speed, landing_speed) = hand_on(contact, state.landing_speed);
+            let (bounce_speed, landing_speed) = hand_on(contact, state.landed_at);
             if contact.bounce_speed != bounce_speed {
                 contact.bounce_speed = bounce_speed;
                 state.bearing = None;
             }
             state.landing_speed = landing_speed;
+        }
+    }
+
+    /// Ends a step: each pair's landing in it is handed on to the next
+    /// ([`ContactSet::hand_on_impacts`]).
+    pub(crate) fn end_step(&mut self) {
+        for Entry { state, .. } in &mut self.entries {
+            state.landed_at = state.landing_speed;
         }
     }
 

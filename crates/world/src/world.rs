@@ -550,6 +550,7 @@ impl World {
         {
             self.contact_set.store(self.settings.model, &self.problem);
         }
+        self.contact_set.end_step();
         Ok(())
     }
 }
