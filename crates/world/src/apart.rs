@@ -59,6 +59,8 @@ pub(crate) struct Placement {
     /// How far its points may move in the coming step: a pair's margin grows by their
     /// closing ([`crate::speculative`]).
     pub travel: Travel,
+    /// A ball or a cylinder, whose contacts on its curved surface run over it as it rolls.
+    pub round: bool,
 }
 
 /// A pair found apart along an axis, with the poses it was found at.
@@ -200,6 +202,7 @@ mod tests {
                     size: reach,
                     reach,
                     travel: Travel::default(),
+                    round: false,
                 }
             };
             let (now_a, now_b) = (
@@ -256,6 +259,7 @@ mod tests {
             size: reach,
             reach,
             travel: Travel::default(),
+            round: false,
         };
         let turned = (
             cube_at.0,

@@ -17,6 +17,7 @@ use crate::carry::CarryBounds;
 use crate::contact_set::{Computed, ContactSet, Recycled};
 use crate::parallel;
 use crate::parry_bridge::{self, Cast, Collider};
+use crate::shape::Shape;
 use crate::speculative::Travel;
 use crate::support::{Feature, FeatureAngle, Outline, Support, VertexIds, support};
 
@@ -182,6 +183,7 @@ pub(crate) fn detect(
             size,
             reach,
             travel: Travel::of(body, reach, dt),
+            round: matches!(body.shape(), Shape::Sphere { .. } | Shape::Cylinder { .. }),
         }
     }));
     let placements = &*placements;
