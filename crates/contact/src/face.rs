@@ -48,7 +48,7 @@ use tatami_geometry::{ConvexPolygon, PolygonKind, Sector};
 use tatami_lcp::{Block, LinearSet, Problem, Projection, Row, RowBound, SolverBody};
 
 use crate::bearing::{bearing_depth, bearing_part};
-use crate::jacobian::{angular_jacobian, face_weld, friction_motion, point_jacobian, twist_rate};
+use crate::jacobian::{angular_jacobian, block_friction_motion, point_jacobian, twist_rate};
 use crate::segment::SegmentProjection;
 use crate::target::normal_target;
 use crate::vertex;
@@ -526,14 +526,8 @@ fn build_bearing(
     let centre = contact.support.centroid();
     let p = frame.to_world(&centre);
     // A face on a face keeps its material points together while they stick; an edge may roll.
-    let weld = face_weld(contact, &problem.bodies, dt, settings.slip_threshold);
-    let (normal_speed, slip, weld) = friction_motion(
-        contact,
-        &problem.bodies,
-        &p,
-        weld.as_ref(),
-        settings.slip_threshold,
-    );
+    let (normal_speed, slip, weld) =
+        block_friction_motion(contact, &problem.bodies, &p, dt, settings.slip_threshold);
     let twist_rate = twist_rate(contact, &problem.bodies);
     let r_bar = match settings.twist_radius {
         TwistRadius::Exact => contact.support.centroid_mean_distance(),

@@ -74,6 +74,19 @@ pub(crate) fn friction_motion(
     }
 }
 
+/// [`friction_motion`] at `p` for a contact's one friction block (the face and patch models'),
+/// with the pair's [`face_weld`].
+pub(crate) fn block_friction_motion(
+    contact: &Contact,
+    bodies: &[SolverBody],
+    p: &Point3<f64>,
+    dt: f64,
+    slip_threshold: f64,
+) -> (f64, f64, Vector3<f64>) {
+    let weld = face_weld(contact, bodies, dt, slip_threshold);
+    friction_motion(contact, bodies, p, weld.as_ref(), slip_threshold)
+}
+
 /// The pair's [`weld_velocity`] where it touches face to face (its support a polygon), for
 /// [`friction_motion`]; `None` for an edge or a point, which may roll.
 pub(crate) fn face_weld(

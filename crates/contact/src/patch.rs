@@ -7,7 +7,7 @@ use nalgebra::Point2;
 use tatami_lcp::{Block, LinearSet, Problem, Projection, Row, RowBound};
 
 use crate::jacobian::{
-    angular_jacobian, face_weld, friction_motion, point_jacobian, point_motion, twist_rate,
+    angular_jacobian, block_friction_motion, point_jacobian, point_motion, twist_rate,
 };
 use crate::target::normal_target;
 use crate::{Contact, ContactProjection, ContactSettings, FrictionCone};
@@ -107,14 +107,8 @@ pub(crate) fn build(
     biases.extend([0.0; 3]);
     let c = frame.to_world(&centre);
     // A face on a face keeps its material points together while they stick.
-    let weld = face_weld(contact, &problem.bodies, dt, settings.slip_threshold);
-    let (_, slip, weld) = friction_motion(
-        contact,
-        &problem.bodies,
-        &c,
-        weld.as_ref(),
-        settings.slip_threshold,
-    );
+    let (_, slip, weld) =
+        block_friction_motion(contact, &problem.bodies, &c, dt, settings.slip_threshold);
     let distances: Vec<f64> = vertices.iter().map(|v| (v - centre).norm()).collect();
     let mean_distance = distances.iter().sum::<f64>() / distances.len() as f64;
     let twist_rate = twist_rate(contact, &problem.bodies);

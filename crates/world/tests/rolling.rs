@@ -116,6 +116,46 @@ fn a_ball_and_a_cylinder_roll_down_a_ramp_at_the_closed_forms_rates() {
     }
 }
 
+/// A ball and a cylinder lying across `heading`, 1 kg each, on a floor turned 25° about the
+/// vertical, 6 m apart, moving at `velocity` and turning at `spin`.
+fn on_the_flat(
+    model: ContactModel,
+    heading: Vector3<f64>,
+    velocity: [f64; 3],
+    spin: [f64; 3],
+) -> World {
+    let axis = Vector3::z().cross(&heading);
+    let lying = UnitQuaternion::rotation_between(&Vector3::z(), &axis).expect("not opposite");
+    World::builder()
+        .model(model)
+        .gravity([0.0, 0.0, -G])
+        .body(
+            BodyDesc::fixed(Shape::cuboid([200.0, 200.0, 2.0]))
+                .position([0.0, 0.0, -1.0])
+                .rotation(rotation([0.0, 0.0, 1.0], 25.0))
+                .friction(MU),
+        )
+        .body(
+            BodyDesc::dynamic(Shape::sphere(RADIUS))
+                .mass(1.0)
+                .friction(MU)
+                .position([0.0, -3.0, RADIUS])
+                .velocity(velocity)
+                .angular_velocity(spin),
+        )
+        .body(
+            BodyDesc::dynamic(Shape::cylinder(RADIUS, 0.5))
+                .mass(1.0)
+                .friction(MU)
+                .position([0.0, 3.0, RADIUS])
+                .rotation(lying)
+                .velocity(velocity)
+                .angular_velocity(spin),
+        )
+        .build()
+        .unwrap()
+}
+
 /// A ball and a cylinder on their side launched at 2 m/s with backspin (`ω r = v` the wrong
 /// way) slide until friction has them rolling, at `v (1 − k) / (1 + k)` with `k = I / (m r²)`:
 /// 3/7 of it for the ball, 1/3 for the cylinder. From then on they roll at that speed and their
@@ -128,38 +168,10 @@ fn backspin_ends_in_rolling_at_the_closed_forms_speed() {
     let axis = Vector3::z().cross(&heading);
     // Rolling forward turns about `axis` at v / r; backspin turns the other way.
     let backspin = -axis * (speed / RADIUS);
-    let lying = UnitQuaternion::rotation_between(&Vector3::z(), &axis).expect("not opposite");
     let velocity = [speed * heading.x, speed * heading.y, 0.0];
     let spin = [backspin.x, backspin.y, backspin.z];
     for model in ContactModel::ALL {
-        let mut world = World::builder()
-            .model(model)
-            .gravity([0.0, 0.0, -G])
-            .body(
-                BodyDesc::fixed(Shape::cuboid([200.0, 200.0, 2.0]))
-                    .position([0.0, 0.0, -1.0])
-                    .rotation(rotation([0.0, 0.0, 1.0], 25.0))
-                    .friction(MU),
-            )
-            .body(
-                BodyDesc::dynamic(Shape::sphere(RADIUS))
-                    .mass(1.0)
-                    .friction(MU)
-                    .position([0.0, -3.0, RADIUS])
-                    .velocity(velocity)
-                    .angular_velocity(spin),
-            )
-            .body(
-                BodyDesc::dynamic(Shape::cylinder(RADIUS, 0.5))
-                    .mass(1.0)
-                    .friction(MU)
-                    .position([0.0, 3.0, RADIUS])
-                    .rotation(lying)
-                    .velocity(velocity)
-                    .angular_velocity(spin),
-            )
-            .build()
-            .unwrap();
+        let mut world = on_the_flat(model, heading, velocity, spin);
         // Slipping ends after (v − v') / (μ g), under 0.3 s here.
         for _ in 0..60 {
             world.step(DT).unwrap();
@@ -201,40 +213,12 @@ fn backspin_ends_in_rolling_at_the_closed_forms_speed() {
 fn a_slow_roll_keeps_its_speed() {
     let heading = Vector3::new(35f64.to_radians().cos(), 35f64.to_radians().sin(), 0.0);
     let axis = Vector3::z().cross(&heading);
-    let lying = UnitQuaternion::rotation_between(&Vector3::z(), &axis).expect("not opposite");
     for model in ContactModel::ALL {
         for speed in [2e-4, 1e-3, 5e-3] {
             let velocity = [speed * heading.x, speed * heading.y, 0.0];
             let roll = axis * (speed / RADIUS);
             let spin = [roll.x, roll.y, roll.z];
-            let mut world = World::builder()
-                .model(model)
-                .gravity([0.0, 0.0, -G])
-                .body(
-                    BodyDesc::fixed(Shape::cuboid([200.0, 200.0, 2.0]))
-                        .position([0.0, 0.0, -1.0])
-                        .rotation(rotation([0.0, 0.0, 1.0], 25.0))
-                        .friction(MU),
-                )
-                .body(
-                    BodyDesc::dynamic(Shape::sphere(RADIUS))
-                        .mass(1.0)
-                        .friction(MU)
-                        .position([0.0, -3.0, RADIUS])
-                        .velocity(velocity)
-                        .angular_velocity(spin),
-                )
-                .body(
-                    BodyDesc::dynamic(Shape::cylinder(RADIUS, 0.5))
-                        .mass(1.0)
-                        .friction(MU)
-                        .position([0.0, 3.0, RADIUS])
-                        .rotation(lying)
-                        .velocity(velocity)
-                        .angular_velocity(spin),
-                )
-                .build()
-                .unwrap();
+            let mut world = on_the_flat(model, heading, velocity, spin);
             for _ in 0..(10.0 / DT).round() as usize {
                 world.step(DT).unwrap();
             }
