@@ -105,9 +105,10 @@ pub(crate) fn face_weld(
 /// where two points' velocities agree A's still drifts from B's by `−½dt² ω×(ω×(c_A − c_B))`
 /// a step, the same at every point of the contact: a box sticking to a turntable at 1 rad/s,
 /// 1 m out, spiralled outwards at `ω²r dt/2` a step, 8.3 mm/s at 60 Hz. This velocity cancels
-/// that drift exactly for bodies turning at a steady `ω`. Zero unless the bodies turn together (their
-/// turn against each other moves no point of the support by more than `slip_threshold` a
-/// second): a body landing on a face or tipping over it does not keep its points on the other.
+/// that drift exactly for bodies turning at a steady `ω`. Zero unless the bodies turn together
+/// (their turn against each other moves no point of the support by more than `slip_threshold`
+/// a second): a body landing on a face or tipping over it does not keep its points on the
+/// other.
 /// Only a face resting on a face keeps its material points together; a rolling ball or
 /// cylinder does not (its contact runs over its surface), so only faces take it.
 fn weld_velocity(
