@@ -108,9 +108,7 @@ pub(crate) fn face_weld(
 /// that drift exactly for bodies turning at a steady `ω`. Zero unless the bodies turn together
 /// (their turn against each other moves no point of the support by more than `slip_threshold`
 /// a second): a body landing on a face or tipping over it does not keep its points on the
-/// other.
-/// Only a face resting on a face keeps its material points together; a rolling ball or
-/// cylinder does not (its contact runs over its surface), so only faces take it.
+/// other. Only faces take it ([`face_weld`]): a rolling contact runs over its body's surface.
 fn weld_velocity(
     contact: &Contact,
     bodies: &[SolverBody],

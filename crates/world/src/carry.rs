@@ -9,6 +9,10 @@
 //! each depth changes by how far the point of A that was there has moved along the normal,
 //! away (shallower) or in (deeper). The slip and turn are summed over the steps the contact is
 //! carried, so it is never further than the bounds from the contact computed at its poses.
+//!
+//! A ball's or a cylinder's contact at a point or along its side is not carried
+//! ([`crate::contact_set`]): it runs over the curved surface as the body rolls, and moved with
+//! the body its normal tilted with the turn and pushed the body on.
 
 use nalgebra::Point2;
 use tatami_contact::Contact;
