@@ -41,6 +41,14 @@ pub(crate) struct CollisionWorkspace {
     pub(crate) placements: Vec<Placement>,
 }
 
+impl CollisionWorkspace {
+    /// The pairs whose boxes, grown by the margin and by how far their points may move in the
+    /// step, overlapped in the last pass: every pair that may meet in the step.
+    pub(crate) fn pairs(&self) -> &[(usize, usize)] {
+        &self.pairs
+    }
+}
+
 /// Scratch for the touching features of one pair's two bodies.
 #[derive(Debug, Default, Clone)]
 struct Features {

@@ -11,7 +11,7 @@ use parry3d_f64::math::{Pose, Rotation, Vector};
 use parry3d_f64::query::details::contact_support_map_support_map_with_params;
 use parry3d_f64::query::gjk::{GJKResult, VoronoiSimplex};
 use parry3d_f64::query::{
-    ContactManifold, DefaultQueryDispatcher, PersistentQueryDispatcher, ShapeCastOptions,
+    self, ContactManifold, DefaultQueryDispatcher, PersistentQueryDispatcher, ShapeCastOptions,
     ShapeCastStatus, cast_shapes,
 };
 use parry3d_f64::shape::{ConvexPolyhedron, Cuboid, SharedShape};
@@ -122,6 +122,17 @@ impl Collider {
         }
         let aabb = self.shape.compute_aabb(&placed);
         (from_glam(aabb.mins) - grow, from_glam(aabb.maxs) + grow)
+    }
+
+    /// How deep this shape at `pose` and `other` at `other_pose` overlap (m, along parry's
+    /// least direction out of each other); 0 when apart, or when parry has no query for the
+    /// pair.
+    pub(crate) fn depth_into(&self, pose: &Pose, other: &Collider, other_pose: &Pose) -> f64 {
+        let (placed, other_placed) = (*pose * self.local, *other_pose * other.local);
+        match query::contact(&placed, &*self.shape, &other_placed, &*other.shape, 0.0) {
+            Ok(Some(contact)) => (-contact.dist).max(0.0),
+            Ok(None) | Err(_) => 0.0,
+        }
     }
 
     /// Whether the contact normal against this shape may come from its rounded core (a

@@ -15,6 +15,7 @@ use crate::contact_set::ContactSet;
 use crate::impact::Impacts;
 use crate::parallel;
 use crate::parry_bridge::Collider;
+use crate::rewind::{RewindWorkspace, StepMotion};
 use crate::sleep::Islands;
 use crate::support::Outline;
 use crate::{
@@ -49,6 +50,8 @@ pub struct World {
     biases: Vec<f64>,
     /// Scratch: each moving body's state after the step, checked before it is committed.
     motions: Vec<(usize, Motion)>,
+    /// Scratch of the pass that puts back fast pairs driven deep into each other.
+    rewind: RewindWorkspace,
     /// The position pass's answer in the last step: per body, the pseudo-velocities that move
     /// its position only. Empty on steps without biases.
     pub(crate) pseudo_velocities: Vec<SolverBody>,
@@ -91,6 +94,7 @@ impl World {
             biases: Vec::new(),
             pseudo_velocities: Vec::new(),
             motions: Vec::new(),
+            rewind: RewindWorkspace::default(),
             collision_workspace: CollisionWorkspace::default(),
             islands: Islands::default(),
             set_aside: SolvedState::default(),
@@ -225,7 +229,8 @@ impl World {
     }
 
     /// Advances the world by `dt` seconds, in stages: collision → contact rows → velocity
-    /// solve → position correction → integrate.
+    /// solve → position correction → integrate (a pair of free bodies the step drives into
+    /// each other from apart put back where they met).
     ///
     /// The velocity solve is warm-started from the contact set (the face model's blocks from
     /// the impulse each applied, the other models' rows by feature id) when the solver's
@@ -536,6 +541,19 @@ impl World {
             }
             self.motions.push((index, motion));
         }
+        // A pair of free bodies the step drives into each other from apart is put back where
+        // they met ([`crate::rewind`]).
+        let step = StepMotion {
+            bodies: &self.bodies,
+            geometry: &self.geometry,
+            solved: &self.problem.bodies,
+            dt,
+            margin: self.settings.contact_margin,
+            slop: self.settings.contact.slop,
+        };
+        let pairs = self.collision_workspace.pairs();
+        let contacts = self.contact_set.contacts();
+        (self.rewind).rewind(&step, pairs, contacts, &mut self.motions);
         // Every body's new state is finite: commit them all, and the solve's impulses.
         for (index, motion) in &self.motions {
             self.bodies[*index].set_motion(motion);

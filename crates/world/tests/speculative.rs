@@ -489,3 +489,92 @@ fn two_balls_collide_as_the_closed_form_of_a_frictionless_impact() {
         }
     }
 }
+
+/// How deep two cubes of edge `side` overlap (m; 0 apart), centred at `a` and `b` and turned
+/// by `ra` and `rb`: the least overlap of their projections over the fifteen axes of the
+/// separating-axis test (each cube's three face normals and the nine crossings of their
+/// edges), the depth the least push apart would take out. Independent of the engine's own
+/// collision.
+fn cube_overlap(
+    side: f64,
+    (a, ra): (&Point3<f64>, &UnitQuaternion<f64>),
+    (b, rb): (&Point3<f64>, &UnitQuaternion<f64>),
+) -> f64 {
+    let axes_a: [Vector3<f64>; 3] = [ra * Vector3::x(), ra * Vector3::y(), ra * Vector3::z()];
+    let axes_b: [Vector3<f64>; 3] = [rb * Vector3::x(), rb * Vector3::y(), rb * Vector3::z()];
+    let crossings = axes_a
+        .iter()
+        .flat_map(|u| axes_b.iter().map(move |v| u.cross(v)))
+        .filter(|axis| axis.norm() > 1e-9)
+        .map(|axis| axis.normalize());
+    let radius = |axes: &[Vector3<f64>; 3], axis: &Vector3<f64>| {
+        axes.iter().map(|u| u.dot(axis).abs()).sum::<f64>() * side / 2.0
+    };
+    axes_a
+        .into_iter()
+        .chain(axes_b)
+        .chain(crossings)
+        .map(|axis| radius(&axes_a, &axis) + radius(&axes_b, &axis) - (b - a).dot(&axis).abs())
+        .fold(f64::INFINITY, f64::min)
+        .max(0.0)
+}
+
+/// Two 0.3 m, 1 kg cubes thrown at each other along a diagonal at 5, 10 and 20 m/s each
+/// (8, 17 and 33 cm a step each at 60 Hz, no gravity), from 20 seeded random turns a speed.
+/// They meet corner to corner or edge to edge, where no face lies under the points that the
+/// impact's turn swings in within the step: before the pass that puts such a pair back where
+/// it met (`rewind`), the step in which they first overlapped ended with them past the slop
+/// and the margin (7 mm) from 9, 14 and 17 of the 20 starts, up to 11.5, 9.4 and 30 cm into
+/// each other. Now that step ends no deeper than the slop, where the pass puts them, or the
+/// slop and the margin, short of which it does not act (to rounding); and they do meet.
+#[test]
+fn cubes_thrown_at_each_other_end_their_first_overlapping_step_at_the_slop() {
+    let side = 0.3;
+    let direction = Vector3::new(1.0, 2.0, 2.0) / 3.0;
+    let mut random = Random::new(17);
+    for speed in [5.0, 10.0, 20.0] {
+        for start in 0..20 {
+            let (turn_a, turn_b) = (turned(&mut random), turned(&mut random));
+            let cube = |name: &str, at: f64, turn: UnitQuaternion<f64>| {
+                let centre = direction * at;
+                let velocity = direction * (-at.signum() * speed);
+                BodyDesc::dynamic(Shape::cuboid([side; 3]))
+                    .name(name)
+                    .mass(1.0)
+                    .position(centre.into())
+                    .rotation(turn)
+                    .velocity(velocity.into())
+            };
+            let mut world = World::builder()
+                .gravity([0.0; 3])
+                .body(cube("a", -0.6, turn_a))
+                .body(cube("b", 0.6, turn_b))
+                .build()
+                .expect("a valid scene");
+            let settings = *world.settings();
+            let bound = settings.contact.slop + settings.contact_margin;
+            let first_overlap = (0..60).find_map(|_| {
+                world.step(DT).expect("a step");
+                let [a, b] = ["a", "b"].map(|name| world.body(name).expect("the cube"));
+                let overlap = cube_overlap(
+                    side,
+                    (&a.centre_of_mass(), &a.rotation()),
+                    (&b.centre_of_mass(), &b.rotation()),
+                );
+                (overlap > 0.0).then_some(overlap)
+            });
+            // Stopped by their speculative contact exactly at the surface, they may never overlap.
+            let overlap = first_overlap.unwrap_or(0.0);
+            assert!(
+                overlap <= bound + 1e-9,
+                "at {speed} m/s, start {start}: the first overlapping step ended {overlap} m deep"
+            );
+            // They did meet: each came out slower along its throw than it went in.
+            let a = world.body("a").expect("the cube");
+            assert!(
+                a.linear_velocity().dot(&direction) < 0.99 * speed,
+                "at {speed} m/s, start {start}: the cubes missed each other"
+            );
+        }
+    }
+}
