@@ -21,7 +21,7 @@
 //! 1 m with `e` = 0.8 at 60 Hz: 0.6401 m; bounced at `e` times the step's approach plus its
 //! gravity, 0.665 m).
 
-use nalgebra::Vector3;
+use nalgebra::{Point2, Vector2, Vector3};
 use tatami_contact::{Contact, ContactSettings};
 
 use crate::body::Body;
@@ -59,9 +59,10 @@ impl Impacts<'_> {
     }
 
     /// How fast `contact`'s bodies land on each other in this step, to bounce on the next (m/s;
-    /// see the module doc for the integrator's speed): the fastest of its points still apart
-    /// that close their gaps in the step — or `met_at`, the speed the pair's last contact met
-    /// at, when faster and no point has landed yet (a landing the solve left short of the
+    /// see the module doc for the integrator's speed): the speed of its points still apart
+    /// that close their gaps in the step, taken at their centroid with their mean gap — or
+    /// `met_at`, the speed the pair's last contact met at, when faster and no point has landed
+    /// yet (a landing the solve left short of the
     /// surface lands again, the speed kept). 0 for a pair that does not bounce, whose points
     /// apart do not close their gaps in the step, or that bounces in this step (its contact has
     /// a bounce speed and a point landed or closing: the contact models bounce both).
@@ -77,28 +78,31 @@ impl Impacts<'_> {
         let frame = &contact.frame;
         let support = contact.support.vertices().iter().zip(&contact.depths);
         let landing = contact.landing.iter().map(|l| (&l.point, &l.depth));
-        let met = support
-            .chain(landing)
-            .filter(|&(_, &depth)| !settings.has_landed(depth))
-            .filter_map(|(point, &depth)| {
-                let p = frame.to_world(point);
-                let approach = -(a.velocity_at(&p) - b.velocity_at(&p)).dot(&frame.normal);
-                let gap = -depth;
-                let closes = (approach + pull * dt) * dt >= gap;
-                let middle = approach + 0.5 * pull * dt;
-                closes.then(|| (middle * middle + 2.0 * pull * gap).max(0.0).sqrt())
-            })
-            .fold(None, |fastest: Option<f64>, speed| {
-                Some(fastest.map_or(speed, |f| f.max(speed)))
-            });
+        let closing = |&(point, &depth): &(&Point2<f64>, &f64)| {
+            if settings.has_landed(depth) {
+                return false;
+            }
+            let p = frame.to_world(point);
+            let approach = -(a.velocity_at(&p) - b.velocity_at(&p)).dot(&frame.normal);
+            (approach + pull * dt) * dt >= -depth
+        };
+        // The points that close their gaps in the step meet as one: with the fastest of them
+        // standing for the whole landing, every point of a face landing tilted and turning
+        // bounced at its fastest corner's speed, and a cube dropped turned at random with
+        // restitution 0.9 came up with up to 1.27 times the energy it was dropped with.
+        let (sum, gaps, count) = support.chain(landing).filter(closing).fold(
+            (Vector2::zeros(), 0.0, 0.0),
+            |(sum, gaps, count), (point, &depth)| (sum + point.coords, gaps - depth, count + 1.0),
+        );
         let landed = contact.depths.iter().any(|&d| settings.has_landed(d));
-        let bounces = contact.bounce_speed > 0.0 && (landed || met.is_some());
-        match met {
-            _ if bounces => 0.0,
-            Some(speed) if landed => speed,
-            Some(speed) => speed.max(met_at),
-            None => 0.0,
+        if count == 0.0 || contact.bounce_speed > 0.0 {
+            return 0.0;
         }
+        let p = frame.to_world(&Point2::from(sum / count));
+        let approach = -(a.velocity_at(&p) - b.velocity_at(&p)).dot(&frame.normal);
+        let (gap, middle) = (gaps / count, (approach + 0.5 * pull * dt).max(0.0));
+        let speed = (middle * middle + 2.0 * pull * gap).max(0.0).sqrt();
+        if landed { speed } else { speed.max(met_at) }
     }
 
     /// The speed `contact`'s landed points bounce at in this step ([`Contact::bounce_speed`]),
