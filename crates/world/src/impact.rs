@@ -62,11 +62,14 @@ impl Impacts<'_> {
     /// see the module doc for the integrator's speed): the speed of its points still apart
     /// that close their gaps in the step, taken at their centroid with their mean gap — or
     /// `met_at`, the speed the pair's last contact met at, when faster and no point has landed
-    /// yet (a landing the solve left short of the
-    /// surface lands again, the speed kept). 0 for a pair that does not bounce, whose points
-    /// apart do not close their gaps in the step, or that bounces in this step (its contact has
-    /// a bounce speed and a point landed or closing: the contact models bounce both).
-    pub(crate) fn landing_speed(&self, contact: &Contact, met_at: f64) -> f64 {
+    /// yet (a landing the solve left short of the surface lands again, the speed kept). 0 for a
+    /// pair that does not bounce, whose points apart do not close their gaps in the step, or
+    /// that bounces in this step at `bounce_speed` ([`Impacts::bounce_speed`]; the contact
+    /// models bounce its landed and closing points both). Read off the contact instead, the
+    /// bounce was the last step's, or none for a contact found afresh: a pair bounced, handed
+    /// its landing on again, and bounced a second time on the next step (two cubes with
+    /// restitution 0.9 thrown at each other parted with up to 1.44 times their energy).
+    pub(crate) fn landing_speed(&self, contact: &Contact, met_at: f64, bounce_speed: f64) -> f64 {
         if contact.material.restitution == 0.0 {
             return 0.0;
         }
@@ -95,7 +98,7 @@ impl Impacts<'_> {
             |(sum, gaps, count), (point, &depth)| (sum + point.coords, gaps - depth, count + 1.0),
         );
         let landed = contact.depths.iter().any(|&d| settings.has_landed(d));
-        if count == 0.0 || contact.bounce_speed > 0.0 {
+        if count == 0.0 || bounce_speed > 0.0 {
             return 0.0;
         }
         let p = frame.to_world(&Point2::from(sum / count));
@@ -139,7 +142,7 @@ mod tests {
             dt: DT,
             settings: &settings,
         };
-        impacts.landing_speed(contact, met_at)
+        impacts.landing_speed(contact, met_at, contact.bounce_speed)
     }
 
     /// A ball falling at `speed` onto a fixed floor, its contact at `depth` along a normal

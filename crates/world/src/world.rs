@@ -342,7 +342,7 @@ impl World {
         };
         self.contact_set.hand_on_impacts(|contact, met_at| {
             let bounce = impacts.bounce_speed(contact, met_at);
-            (bounce, impacts.landing_speed(contact, met_at))
+            (bounce, impacts.landing_speed(contact, met_at, bounce))
         });
     }
 
