@@ -7,6 +7,9 @@
 //! either. The test guards the contact and integration stages; what a push does to bodies that
 //! start overlapping is `overlap_recovery.rs`'s.
 
+mod common;
+
+use common::turned;
 use tatami_world::dropped::{DROP_STEPS, dropped_scene};
 
 /// Scenes tried (the experiments run more).
@@ -56,13 +59,7 @@ fn a_bouncy_cube_tumbling_on_a_floor_never_gains_energy() {
     use tatami_world::{BodyDesc, ContactModel, Shape, World};
     let mut random = Random::new(17);
     for start in 0..20 {
-        let mut component = || random.between(-1.0, 1.0);
-        let turn = nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
-            component(),
-            component(),
-            component(),
-            component(),
-        ));
+        let turn = turned(&mut random);
         for model in [
             ContactModel::Vertex,
             ContactModel::Patch,
@@ -106,23 +103,14 @@ fn a_bouncy_cube_tumbling_on_a_floor_never_gains_energy() {
 /// and 1.75 times their energy.
 #[test]
 fn bouncy_cubes_thrown_at_each_other_never_gain_energy() {
-    use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+    use nalgebra::{UnitQuaternion, Vector3};
     use tatami_world::dropped::Random;
     use tatami_world::{BodyDesc, Shape, World};
     let direction = Vector3::new(1.0, 2.0, 2.0) / 3.0;
     for restitution in [0.9, 1.0] {
         let mut random = Random::new(17);
         for start in 0..20 {
-            let mut turn = || {
-                let mut component = || random.between(-1.0, 1.0);
-                UnitQuaternion::from_quaternion(Quaternion::new(
-                    component(),
-                    component(),
-                    component(),
-                    component(),
-                ))
-            };
-            let (turn_a, turn_b) = (turn(), turn());
+            let (turn_a, turn_b) = (turned(&mut random), turned(&mut random));
             let cube = |at: f64, turn: UnitQuaternion<f64>| {
                 BodyDesc::dynamic(Shape::cuboid([0.3; 3]))
                     .mass(1.0)

@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::rotation;
+use common::{rotation, turned};
 use nalgebra::{Point3, UnitQuaternion, Vector3};
 use tatami_world::dropped::Random;
 use tatami_world::{BodyDesc, Shape, World};
@@ -18,13 +18,6 @@ fn corners(side: f64) -> impl Iterator<Item = Vector3<f64>> {
         let half = |bit: usize| if k & bit == 0 { -0.5 } else { 0.5 };
         Vector3::new(half(1), half(2), half(4)) * side
     })
-}
-
-/// A rotation drawn uniformly enough from `random` (a normalised quaternion of uniform
-/// components).
-fn turned(random: &mut Random) -> UnitQuaternion<f64> {
-    let mut c = || random.between(-1.0, 1.0);
-    UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(c(), c(), c(), c()))
 }
 
 /// The deepest any corner of a 1 m cube goes below the floor's top (m) over 4 s, dropped from

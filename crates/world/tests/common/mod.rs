@@ -4,6 +4,7 @@
 #![allow(dead_code)] // each test binary uses a subset
 
 use nalgebra::{UnitQuaternion, Vector3};
+use tatami_world::dropped::Random;
 use tatami_world::scene::{Scene, SceneError};
 use tatami_world::{BodyDesc, Shape, World, WorldBuilder};
 
@@ -35,6 +36,13 @@ pub fn rotation(axis: [f64; 3], degrees: f64) -> UnitQuaternion<f64> {
         &nalgebra::Unit::new_normalize(Vector3::from(axis)),
         degrees.to_radians(),
     )
+}
+
+/// A rotation drawn from `random` (a normalised quaternion of uniform components), for scenes
+/// turned at random.
+pub fn turned(random: &mut Random) -> UnitQuaternion<f64> {
+    let mut c = || random.between(-1.0, 1.0);
+    UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(c(), c(), c(), c()))
 }
 
 /// A floor and one cube resting flat on it.
