@@ -33,9 +33,11 @@ use nalgebra::{Point3, Quaternion, UnitQuaternion};
 use tatami_contact::Contact;
 use tatami_lcp::SolverBody;
 
+use crate::apart::Placement;
 use crate::body::{Body, Motion};
 use crate::collision::BodyGeometry;
 use crate::parry_bridge;
+use crate::speculative::Travel;
 
 /// Halvings of the step that find where a pair stood at the depth it may keep: the motion's
 /// 1/256th, 1.3 mm of a pair closing at 20 m/s at 60 Hz.
@@ -50,9 +52,8 @@ pub(crate) struct RewindWorkspace {
     kept: Vec<f64>,
     /// How many bodies other than fixed ones each body has a contact with.
     neighbours: Vec<u32>,
-    /// Each body: dynamic, touching no more than one other body that is not fixed, and fast
-    /// enough to close on another past the margin.
-    free: Vec<bool>,
+    /// How far each body's points may move in the step at its solved velocities.
+    travels: Vec<Travel>,
     /// The pairs put back, and the share of the step each keeps.
     rewinds: Vec<([usize; 2], f64)>,
     /// Bodies whose rewind would drive them or a third body deeper into each other.
@@ -63,6 +64,8 @@ pub(crate) struct RewindWorkspace {
 pub(crate) struct StepMotion<'a> {
     pub bodies: &'a [Body],
     pub geometry: &'a [BodyGeometry],
+    /// Where each body was at the step's start, with how far its shape reaches.
+    pub placements: &'a [Placement],
     /// The solved velocities, by body.
     pub solved: &'a [SolverBody],
     pub dt: f64,
@@ -100,18 +103,17 @@ impl RewindWorkspace {
                 self.neighbours[b] += 1;
             }
         }
-        // A body whose points move less than half the margin in the step cannot close on
-        // another past the margin with one that does not either.
-        self.free.clear();
-        self.free.extend((0..bodies.len()).map(|k| {
-            let fast = step.travel(k) > 0.5 * step.margin;
-            fast && self.neighbours[k] <= 1 && bodies[k].is_dynamic()
-        }));
+        let reach = |k: usize| step.placements[k].reach;
+        self.travels.clear();
+        self.travels
+            .extend(step.solved.iter().enumerate().map(|(k, v)| {
+                Travel::moving(&v.linear_velocity, &v.angular_velocity, reach(k), step.dt)
+            }));
         for &(a, b) in pairs {
             let pair = [a, b];
             // Cheapest tests first: most pairs of a pile touch a third body.
             let alone = pair.iter().all(|&k| self.neighbours[k] <= 1);
-            if !alone || !(self.free[a] || self.free[b]) {
+            if !alone {
                 continue;
             }
             let ends = pair.map(|k| self.motion_of[k].map(|m| motions[m].1.centre));
@@ -119,11 +121,11 @@ impl RewindWorkspace {
                 continue;
             };
             let dynamic = bodies[a].is_dynamic() && bodies[b].is_dynamic();
-            if !dynamic || !step.may_close_past_margin(pair) {
+            if !dynamic || self.travels[a].closing(&self.travels[b]) <= step.margin {
                 continue;
             }
             // Where the step ends them, their bounding spheres apart: most fast pairs end so.
-            if (end_a - end_b).norm() > step.reach(a) + step.reach(b) {
+            if (end_a - end_b).norm() > reach(a) + reach(b) {
                 continue;
             }
             let depth = |s: f64| step.depth(pair, [s, s], &self.motion_of, motions);
@@ -183,27 +185,6 @@ impl RewindWorkspace {
 }
 
 impl StepMotion<'_> {
-    /// Whether the points of `pair` may close on each other by more than the margin in the
-    /// step at their solved velocities.
-    fn may_close_past_margin(&self, [a, b]: [usize; 2]) -> bool {
-        let (va, vb) = (&self.solved[a], &self.solved[b]);
-        let closing = (va.linear_velocity - vb.linear_velocity).norm()
-            + va.angular_velocity.norm() * self.reach(a)
-            + vb.angular_velocity.norm() * self.reach(b);
-        closing * self.dt > self.margin
-    }
-
-    /// How far body `k`'s points may move in the step at its solved velocities (m).
-    fn travel(&self, k: usize) -> f64 {
-        let v = &self.solved[k];
-        (v.linear_velocity.norm() + v.angular_velocity.norm() * self.reach(k)) * self.dt
-    }
-
-    /// How far body `k`'s shape reaches from its centre of mass (m).
-    fn reach(&self, k: usize) -> f64 {
-        self.geometry[k].outline.size() + self.bodies[k].com_offset().norm()
-    }
-
     /// How deep `pair`'s shapes overlap (m; 0 apart) with each body at its share of its
     /// step's motion in `shares` (a body without a motion where it is).
     fn depth(

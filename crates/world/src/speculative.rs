@@ -46,9 +46,20 @@ pub(crate) struct Travel {
 impl Travel {
     /// `body`'s travel in a step of `dt`, its shape reaching `reach` from its centre of mass.
     pub(crate) fn of(body: &Body, reach: f64, dt: f64) -> Self {
-        let spin = body.angular_velocity() * dt;
+        Self::moving(&body.linear_velocity(), &body.angular_velocity(), reach, dt)
+    }
+
+    /// The travel in a step of `dt` of a body moving at `velocity` and turning at
+    /// `angular_velocity`, its shape reaching `reach` from its centre of mass.
+    pub(crate) fn moving(
+        velocity: &Vector3<f64>,
+        angular_velocity: &Vector3<f64>,
+        reach: f64,
+        dt: f64,
+    ) -> Self {
+        let spin = angular_velocity * dt;
         Self {
-            shift: body.linear_velocity() * dt,
+            shift: velocity * dt,
             spin,
             turn: spin.norm() * reach,
         }

@@ -546,6 +546,7 @@ impl World {
         let step = StepMotion {
             bodies: &self.bodies,
             geometry: &self.geometry,
+            placements: &self.collision_workspace.placements,
             solved: &self.problem.bodies,
             dt,
             margin: self.settings.contact_margin,
