@@ -38,6 +38,7 @@ use tatami_lcp::{Problem, Projection};
 
 use crate::apart::{Apart, Placement};
 use crate::carry::{CarryBounds, Drift, carry};
+use crate::impact::Touchdown;
 use crate::load_estimate::LoadEstimate;
 use crate::parallel;
 use crate::support::{FeatureId, FeatureIds, VertexIds};
@@ -154,11 +155,11 @@ struct PairState {
     touching: bool,
     /// The face model's bearing part of the contact, while the contact is unchanged.
     bearing: Option<Bearing>,
-    /// How fast the last step's contact landed the bodies on each other, for this step's
-    /// bounce ([`crate::impact`]): [`ContactSet::end_step`] sets it from `landing_speed`.
-    landed_at: f64,
-    /// How fast this step's contact lands them, handed on when the step ends.
-    landing_speed: f64,
+    /// How the last step's contact landed the bodies on each other, for this step's bounce
+    /// ([`crate::impact`]): [`ContactSet::end_step`] sets it from `landing`.
+    landed: Touchdown,
+    /// How this step's contact lands them, handed on when the step ends.
+    landing: Touchdown,
 }
 
 /// What the last solve left of a pair, for the next warm start.
@@ -314,7 +315,7 @@ impl ContactSet {
             let recycled = Recycled {
                 depths: std::mem::take(&mut entry.contact.depths),
                 normal: Some(entry.contact.frame.normal),
-                keep_normal: entry.state.landed_at > 0.0,
+                keep_normal: entry.state.landed.speed > 0.0,
             };
             entry.state.bearing = None;
             entry.state.touching = match compute(scratch, pair, recycled) {
@@ -369,27 +370,30 @@ impl ContactSet {
                 last: Solved::Nothing,
                 touching: true,
                 bearing: None,
-                landed_at: 0.0,
-                landing_speed: 0.0,
+                landed: Touchdown::default(),
+                landing: Touchdown::default(),
             },
         });
         self.met.push(true);
     }
 
     /// Hands each pair's landing on ([`crate::impact`]): `hand_on`, given the pair's contact and
-    /// the speed the last step's contact landed it at, returns the contact's bounce speed and
-    /// the speed it lands the pair at, handed on to the next step by
+    /// how the last step's contact landed it, returns the contact's bounce speed and how it
+    /// lands the pair, handed on to the next step by
     /// [`ContactSet::end_step`]. A kept bearing part made with another bounce speed is dropped.
     /// Another collision pass before the step ends (`World::prepare_step`, then the step)
     /// hands on the same landing again.
-    pub(crate) fn hand_on_impacts(&mut self, hand_on: impl Fn(&Contact, f64) -> (f64, f64)) {
+    pub(crate) fn hand_on_impacts(
+        &mut self,
+        hand_on: impl Fn(&Contact, Touchdown) -> (f64, Touchdown),
+    ) {
         for Entry { contact, state } in &mut self.entries {
-            let (bounce_speed, landing_speed) = hand_on(contact, state.landed_at);
+            let (bounce_speed, landing) = hand_on(contact, state.landed);
             if contact.bounce_speed != bounce_speed {
                 contact.bounce_speed = bounce_speed;
                 state.bearing = None;
             }
-            state.landing_speed = landing_speed;
+            state.landing = landing;
         }
     }
 
@@ -397,7 +401,7 @@ impl ContactSet {
     /// ([`ContactSet::hand_on_impacts`]).
     pub(crate) fn end_step(&mut self) {
         for Entry { state, .. } in &mut self.entries {
-            state.landed_at = state.landing_speed;
+            state.landed = state.landing;
         }
     }
 

@@ -21,10 +21,22 @@
 //! 1 m with `e` = 0.8 at 60 Hz: 0.6401 m; bounced at `e` times the step's approach plus its
 //! gravity, 0.665 m).
 
-use nalgebra::{Point2, Vector2, Vector3};
+use nalgebra::{DMatrix, DVector, Point2, Vector2, Vector3};
 use tatami_contact::{Contact, ContactSettings};
 
 use crate::body::Body;
+
+/// How a pair met in a step (its touchdown), handed on to the next step's bounce
+/// ([`Impacts::landing`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct Touchdown {
+    /// The speed met at, at the centroid of the points that met (m/s); 0 for no landing.
+    pub speed: f64,
+    /// Twice the kinetic energy it takes to stop those points along the normal, each at the
+    /// speed it met at (J): `uᵀ A⁺ u`, `u` their speeds and `A` the pair's coupling of their
+    /// normal velocities ([`Impacts::coupling`]); what a bounce may give back `e²` of.
+    pub stopping: f64,
+}
 
 /// A step's bodies, gravity, length and contact settings, which the speeds of its landings
 /// and bounces read.
@@ -58,67 +70,167 @@ impl Impacts<'_> {
         -(pulled(a) - pulled(b)).dot(&contact.frame.normal)
     }
 
-    /// How fast `contact`'s bodies land on each other in this step, to bounce on the next (m/s;
-    /// see the module doc for the integrator's speed): the speed of its points still apart
-    /// that close their gaps in the step, taken at their centroid with their mean gap — or
-    /// `met_at`, the speed the pair's last contact met at, when faster and no point has landed
-    /// yet (a landing the solve left short of the surface lands again, the speed kept). 0 for a
-    /// pair that does not bounce, whose points apart do not close their gaps in the step, or
-    /// that bounces in this step at `bounce_speed` ([`Impacts::bounce_speed`]; the contact
-    /// models bounce its landed and closing points both). Read off the contact instead, the
-    /// bounce was the last step's, or none for a contact found afresh: a pair bounced, handed
-    /// its landing on again, and bounced a second time on the next step (two cubes with
-    /// restitution 0.9 thrown at each other parted with up to 1.44 times their energy).
-    pub(crate) fn landing_speed(&self, contact: &Contact, met_at: f64, bounce_speed: f64) -> f64 {
-        if contact.material.restitution == 0.0 {
-            return 0.0;
+    /// How `contact`'s bodies land on each other in this step, to bounce on the next (see the
+    /// module doc for the integrator's speed): the speed of its points still apart that close
+    /// their gaps in the step, taken at their centroid with their mean gap, and the energy it
+    /// takes to stop them ([`Touchdown::stopping`]) — or `met`, the last contact's landing,
+    /// when faster and no point has landed yet (a landing the solve left short of the surface
+    /// lands again, the speed kept). None for a pair that does not bounce, whose points apart
+    /// do not close their gaps in the step, or that bounces in this step at `bounce_speed`
+    /// ([`Impacts::bounce_speed`]; the contact models bounce its landed and closing points
+    /// both). Read off the contact instead, the bounce was the last step's, or none for a
+    /// contact found afresh: a pair bounced, handed its landing on again, and bounced a second
+    /// time on the next step (two cubes with restitution 0.9 thrown at each other parted with
+    /// up to 1.44 times their energy).
+    pub(crate) fn landing(
+        &self,
+        contact: &Contact,
+        met: Touchdown,
+        bounce_speed: f64,
+    ) -> Touchdown {
+        if contact.material.restitution == 0.0 || bounce_speed > 0.0 {
+            return Touchdown::default();
         }
-        let (a, b) = (
-            &self.bodies[contact.body_a.0],
-            &self.bodies[contact.body_b.0],
-        );
         let (pull, dt, settings) = (self.closing_pull(contact), self.dt, self.settings);
-        let frame = &contact.frame;
-        let support = contact.support.vertices().iter().zip(&contact.depths);
-        let landing = contact.landing.iter().map(|l| (&l.point, &l.depth));
-        let closing = |&(point, &depth): &(&Point2<f64>, &f64)| {
-            if settings.has_landed(depth) {
-                return false;
-            }
-            let p = frame.to_world(point);
-            let approach = -(a.velocity_at(&p) - b.velocity_at(&p)).dot(&frame.normal);
-            (approach + pull * dt) * dt >= -depth
+        // The speed a point at `gap` approaching at `approach` meets the other body at.
+        let met_at = |approach: f64, gap: f64| {
+            let middle = (approach + 0.5 * pull * dt).max(0.0);
+            (middle * middle + 2.0 * pull * gap).max(0.0).sqrt()
         };
         // The points that close their gaps in the step meet as one: with the fastest of them
         // standing for the whole landing, every point of a face landing tilted and turning
         // bounced at its fastest corner's speed, and a cube dropped turned at random with
         // restitution 0.9 came up with up to 1.27 times the energy it was dropped with.
-        let (sum, gaps, count) = support.chain(landing).filter(closing).fold(
-            (Vector2::zeros(), 0.0, 0.0),
-            |(sum, gaps, count), (point, &depth)| (sum + point.coords, gaps - depth, count + 1.0),
-        );
-        let landed = contact.depths.iter().any(|&d| settings.has_landed(d));
-        if count == 0.0 || bounce_speed > 0.0 {
-            return 0.0;
+        let closing: Vec<(Point2<f64>, f64, f64)> = points(contact)
+            .filter(|&(_, &depth)| !settings.has_landed(depth))
+            .map(|(point, &depth)| (*point, -depth, self.approach(contact, point)))
+            .filter(|&(_, gap, approach)| (approach + pull * dt) * dt >= gap)
+            .collect();
+        if closing.is_empty() {
+            return Touchdown::default();
         }
-        let p = frame.to_world(&Point2::from(sum / count));
-        let approach = -(a.velocity_at(&p) - b.velocity_at(&p)).dot(&frame.normal);
-        let (gap, middle) = (gaps / count, (approach + 0.5 * pull * dt).max(0.0));
-        let speed = (middle * middle + 2.0 * pull * gap).max(0.0).sqrt();
-        if landed { speed } else { speed.max(met_at) }
+        let count = closing.len() as f64;
+        let centroid =
+            Point2::from(closing.iter().map(|(p, ..)| p.coords).sum::<Vector2<f64>>() / count);
+        let gap = closing.iter().map(|(_, gap, _)| gap).sum::<f64>() / count;
+        let speed = met_at(self.approach(contact, &centroid), gap);
+        let at: Vec<Point2<f64>> = closing.iter().map(|(p, ..)| *p).collect();
+        let speeds = DVector::from_iterator(
+            closing.len(),
+            closing
+                .iter()
+                .map(|&(_, gap, approach)| met_at(approach, gap)),
+        );
+        let here = Touchdown {
+            speed,
+            stopping: self.stopping(contact, &at, &speeds),
+        };
+        let landed = contact.depths.iter().any(|&d| settings.has_landed(d));
+        if landed || speed >= met.speed {
+            here
+        } else {
+            met
+        }
     }
 
     /// The speed `contact`'s landed points bounce at in this step ([`Contact::bounce_speed`]),
-    /// its bodies having met at `met_at` ([`Impacts::landing_speed`]) in the step before:
-    /// restitution times that, less half a step of gravity's pull along the normal (module
+    /// its bodies having met as `met` ([`Impacts::landing`]) in the step before: restitution
+    /// times the speed met at, less half a step of gravity's pull along the normal (module
     /// doc), when it is faster than the restitution threshold; else 0.
-    pub(crate) fn bounce_speed(&self, contact: &Contact, met_at: f64) -> f64 {
-        if met_at <= self.settings.restitution_threshold {
+    ///
+    /// The points that bounce all leave at that one speed, which gives back more than `e²` of
+    /// the energy their meeting took where they are heavier along the normal than the points
+    /// that met (a corner met the floor, its edge or face bounces), or where the points met
+    /// unevenly (a body turning as it lands): bounced at Newton's speed, a tumbling cube with
+    /// restitution 0.9 rose up to 1.43 (vertex model) and 2.61 (face model) times its height,
+    /// frictionless. So the speed is at most the one that gives back `e²` of the energy it took
+    /// to stop the points that met, each at its own speed ([`Touchdown::stopping`]): `e √(uᵀ
+    /// A⁺ u / 1ᵀ A'⁺ 1)`, with `A'` the coupling of the points that bounce. Never faster than
+    /// Newton's; for a ball, one point whose coupling is the same wherever it bounces,
+    /// Newton's.
+    pub(crate) fn bounce_speed(&self, contact: &Contact, met: Touchdown) -> f64 {
+        if met.speed <= self.settings.restitution_threshold {
             return 0.0;
         }
+        let settings = self.settings;
+        let bouncing: Vec<Point2<f64>> = points(contact)
+            .filter(|&(point, &depth)| {
+                settings.has_landed(depth) || self.approach(contact, point) * self.dt >= -depth
+            })
+            .map(|(point, _)| *point)
+            .collect();
+        let newton = contact.material.restitution * met.speed;
+        let speed = if bouncing.is_empty() {
+            newton
+        } else {
+            // Twice the energy a bounce at unit speed gives the points that bounce.
+            let unit = self.stopping(contact, &bouncing, &DVector::repeat(bouncing.len(), 1.0));
+            if unit > 0.0 {
+                newton.min(contact.material.restitution * (met.stopping / unit).sqrt())
+            } else {
+                newton
+            }
+        };
         let pull = self.closing_pull(contact);
-        (contact.material.restitution * met_at - 0.5 * pull * self.dt).max(0.0)
+        (speed - 0.5 * pull * self.dt).max(0.0)
     }
+
+    /// How fast `contact`'s bodies close on each other along its normal at `point` (m/s).
+    fn approach(&self, contact: &Contact, point: &Point2<f64>) -> f64 {
+        let (a, b) = (
+            &self.bodies[contact.body_a.0],
+            &self.bodies[contact.body_b.0],
+        );
+        let p = contact.frame.to_world(point);
+        -(a.velocity_at(&p) - b.velocity_at(&p)).dot(&contact.frame.normal)
+    }
+
+    /// The pair's coupling of its normal velocities at `points`: entry `(i, j)` is how fast a
+    /// unit impulse along the normal at point `j` (on A, its reaction on B) closes or opens the
+    /// pair at point `i` (1/kg). Symmetric, positive semidefinite, of rank 3 at most: a rigid
+    /// pair's normal velocities over a plane are affine.
+    fn coupling(&self, contact: &Contact, points: &[Point2<f64>]) -> DMatrix<f64> {
+        let n = &contact.frame.normal;
+        let world: Vec<_> = points.iter().map(|p| contact.frame.to_world(p)).collect();
+        let (a, b) = (
+            &self.bodies[contact.body_a.0],
+            &self.bodies[contact.body_b.0],
+        );
+        DMatrix::from_fn(points.len(), points.len(), |i, j| {
+            let (p, q) = (&world[i], &world[j]);
+            a.normal_coupling(p, q, n) + b.normal_coupling(p, q, n)
+        })
+    }
+
+    /// Twice the kinetic energy the least impulses along the normal at `points` take to change
+    /// the pair's normal velocities there by `speeds` (J): `uᵀ A⁺ u` with `A` the
+    /// [`Impacts::coupling`], its pseudo-inverse for points of which some are redundant (four
+    /// corners of a face, three of them enough to hold it). 0 where the pair cannot be moved.
+    fn stopping(&self, contact: &Contact, points: &[Point2<f64>], speeds: &DVector<f64>) -> f64 {
+        let coupling = self.coupling(contact, points);
+        let largest = coupling.diagonal().max();
+        if largest <= 0.0 {
+            return 0.0;
+        }
+        // `uᵀ A⁺ u` over `A`'s eigenpairs; eigenvalues below this share of the largest
+        // coupling are the redundant points' (zero to rounding). An SVD's pseudo-inverse read
+        // 1.6% low for a cube's face met with its back corners' landing points on the same
+        // spots of the plane.
+        let eigen = coupling.symmetric_eigen();
+        eigen
+            .eigenvalues
+            .iter()
+            .zip(eigen.eigenvectors.column_iter())
+            .filter(|&(&value, _)| value > largest * 1e-9)
+            .map(|(value, vector)| vector.dot(speeds).powi(2) / value)
+            .sum()
+    }
+}
+
+/// `contact`'s support points and landing points, each with its depth.
+fn points(contact: &Contact) -> impl Iterator<Item = (&Point2<f64>, &f64)> {
+    let support = contact.support.vertices().iter().zip(&contact.depths);
+    support.chain(contact.landing.iter().map(|l| (&l.point, &l.depth)))
 }
 
 #[cfg(test)]
@@ -133,7 +245,8 @@ mod tests {
 
     const DT: f64 = 0.01;
 
-    /// [`Impacts::landing_speed`] over a step of [`DT`] with the default settings.
+    /// The speed of [`Impacts::landing`] over a step of [`DT`] with the default settings,
+    /// the last landing met at `met_at`.
     fn landing(contact: &Contact, met_at: f64, bodies: &[Body], gravity: Vector3<f64>) -> f64 {
         let settings = ContactSettings::default();
         let impacts = Impacts {
@@ -142,7 +255,11 @@ mod tests {
             dt: DT,
             settings: &settings,
         };
-        impacts.landing_speed(contact, met_at, contact.bounce_speed)
+        let met = Touchdown {
+            speed: met_at,
+            stopping: bodies[1].mass() * met_at * met_at,
+        };
+        impacts.landing(contact, met, contact.bounce_speed).speed
     }
 
     /// A ball falling at `speed` onto a fixed floor, its contact at `depth` along a normal
@@ -226,12 +343,74 @@ mod tests {
             dt: DT,
             settings: &settings,
         };
-        let bounce = impacts.bounce_speed(&contact, 4.0);
+        // A ball met along its normal: stopping it takes its kinetic energy along the normal.
+        let met = |speed: f64| Touchdown {
+            speed,
+            stopping: bodies[1].mass() * speed * speed,
+        };
+        let bounce = impacts.bounce_speed(&contact, met(4.0));
         assert!(
             (bounce - (0.5 * 4.0 - 0.5 * a * DT)).abs() < 1e-12,
             "{bounce}"
         );
         let slow = settings.restitution_threshold;
-        assert_eq!(impacts.bounce_speed(&contact, slow), 0.0);
+        assert_eq!(impacts.bounce_speed(&contact, met(slow)), 0.0);
+    }
+
+    /// A 0.3 m, 1 kg cube resting flat on a fixed floor, its four corners landed, with
+    /// restitution 1: lifted evenly at its four corners, it moves as 1 kg (`1ᵀ A⁺ 1` = 1 kg:
+    /// the closed form, not the code's). Met at 3 m/s at one corner alone (the coupling there
+    /// `1/m + (r × n)ᵀ I⁻¹ (r × n)` = 1 + 0.15² · 2 / (0.3² / 6) = 4 per kg, so stopping it
+    /// took `v² / 4` = 2.25 J, twice over), its face bounces at half Newton's speed, giving back
+    /// that energy. Met where stopping took more than a bounce at Newton's speed gives back,
+    /// Newton's speed, not more.
+    #[test]
+    fn a_face_bounces_with_the_energy_its_corner_met_with() {
+        let world = World::builder()
+            .gravity([0.0; 3])
+            .body(BodyDesc::fixed(Shape::cuboid([4.0, 4.0, 1.0])))
+            .body(
+                BodyDesc::dynamic(Shape::cuboid([0.3; 3]))
+                    .mass(1.0)
+                    .position([0.0, 0.0, 0.65])
+                    .restitution(1.0),
+            )
+            .build()
+            .expect("a valid scene");
+        let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+            .map(|(x, y)| Point2::new(0.15 * x, 0.15 * y));
+        let contact = Contact {
+            body_a: BodyId(1),
+            body_b: BodyId(0),
+            centre_a: Point3::new(0.0, 0.0, 0.65),
+            centre_b: Point3::origin(),
+            frame: ContactFrame::from_normal(Point3::new(0.0, 0.0, 0.5), Vector3::z())
+                .expect("a frame"),
+            support: ConvexPolygon::from_points(&corners).expect("a square"),
+            depths: vec![0.0; 4],
+            material: Material::new(0.5, 0.5, 1.0).expect("a material"),
+            landing: Vec::new(),
+            bounce_speed: 0.0,
+        };
+        let settings = ContactSettings::default();
+        let bodies = world.bodies();
+        let impacts = Impacts {
+            bodies,
+            gravity: &Vector3::zeros(),
+            dt: DT,
+            settings: &settings,
+        };
+        // The corner's arm (0.15, 0.15, −0.15) crossed with z has length 0.15 √2; the cube's
+        // inertia is m s² / 6 about every axis.
+        let corner = 1.0 + 0.15f64.powi(2) * 2.0 / (0.09 / 6.0);
+        assert!((corner - 4.0).abs() < 1e-12);
+        let met = |stopping| Touchdown {
+            speed: 3.0,
+            stopping,
+        };
+        let bounce = impacts.bounce_speed(&contact, met(9.0 / corner));
+        assert!((bounce - 1.5).abs() < 1e-9, "{bounce}");
+        let bounce = impacts.bounce_speed(&contact, met(18.0));
+        assert!((bounce - 3.0).abs() < 1e-12, "{bounce}");
     }
 }

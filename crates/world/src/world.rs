@@ -340,9 +340,9 @@ impl World {
             dt,
             settings: &self.settings.contact,
         };
-        self.contact_set.hand_on_impacts(|contact, met_at| {
-            let bounce = impacts.bounce_speed(contact, met_at);
-            (bounce, impacts.landing_speed(contact, met_at, bounce))
+        self.contact_set.hand_on_impacts(|contact, met| {
+            let bounce = impacts.bounce_speed(contact, met);
+            (bounce, impacts.landing(contact, met, bounce))
         });
     }
 
