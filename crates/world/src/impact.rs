@@ -20,6 +20,15 @@
 //! then scales the quantity by `e²`, and a ball dropped from `h` rises to `e² h` (0.64 m from
 //! 1 m with `e` = 0.8 at 60 Hz: 0.6401 m; bounced at `e` times the step's approach plus its
 //! gravity, 0.665 m).
+//!
+//! Every point that bounces leaves at that one speed, and those points need not be the ones
+//! that met, nor have met evenly: a tumbling cube meets the floor with a corner and bounces
+//! with its face, which that speed lifts through the whole cube's mass. So the bounce is
+//! capped by energy: it gives back at most `e²` of what the impact took — the energy the
+//! landing step took from the pair, and what stopping the points that bounce still takes
+//! (Stronge's energetic restitution, on the pair's coupling of those points' normal
+//! velocities; [`Impacts::bounce_speed`]). A ball, met and bounced at one point through its
+//! centre, bounces at Newton's speed.
 
 use nalgebra::{DMatrix, DVector, Point2, Vector2, Vector3};
 use tatami_contact::{Contact, ContactSettings};
@@ -36,6 +45,9 @@ pub(crate) struct Touchdown {
     /// speed it met at (J): `uᵀ A⁺ u`, `u` their speeds and `A` the pair's coupling of their
     /// normal velocities ([`Impacts::coupling`]); what a bounce may give back `e²` of.
     pub stopping: f64,
+    /// Twice the pair's energy as the integrator keeps it in free flight, when the step it
+    /// landed in started (J; [`Impacts::kept_energy`]).
+    pub energy: f64,
 }
 
 /// A step's bodies, gravity, length and contact settings, which the speeds of its landings
@@ -72,8 +84,9 @@ impl Impacts<'_> {
 
     /// How `contact`'s bodies land on each other in this step, to bounce on the next (see the
     /// module doc for the integrator's speed): the speed of its points still apart that close
-    /// their gaps in the step, taken at their centroid with their mean gap, and the energy it
-    /// takes to stop them ([`Touchdown::stopping`]) — or `met`, the last contact's landing,
+    /// their gaps in the step, taken at their centroid with their mean gap, the energy it takes
+    /// to stop them ([`Touchdown::stopping`]) and the pair's energy as the step starts — or
+    /// `met`, the last contact's landing,
     /// when faster and no point has landed yet (a landing the solve left short of the surface
     /// lands again, the speed kept). None for a pair that does not bounce, whose points apart
     /// do not close their gaps in the step, or that bounces in this step at `bounce_speed`
@@ -124,6 +137,7 @@ impl Impacts<'_> {
         let here = Touchdown {
             speed,
             stopping: self.stopping(contact, &at, &speeds),
+            energy: self.kept_energy(contact),
         };
         let landed = contact.depths.iter().any(|&d| settings.has_landed(d));
         if landed || speed >= met.speed {
@@ -139,40 +153,65 @@ impl Impacts<'_> {
     /// doc), when it is faster than the restitution threshold; else 0.
     ///
     /// The points that bounce all leave at that one speed, which gives back more than `e²` of
-    /// the energy their meeting took where they are heavier along the normal than the points
-    /// that met (a corner met the floor, its edge or face bounces), or where the points met
-    /// unevenly (a body turning as it lands): bounced at Newton's speed, a tumbling cube with
+    /// the energy the impact took where they are heavier along the normal than the points that
+    /// met (a corner met the floor, its edge or face bounces), or where the points met unevenly
+    /// (a body turning as it lands): bounced at Newton's speed, a tumbling cube with
     /// restitution 0.9 rose up to 1.43 (vertex model) and 2.61 (face model) times its height,
-    /// frictionless. So the speed is at most the one that gives back `e²` of the energy it took
-    /// to stop the points that met, each at its own speed ([`Touchdown::stopping`]): `e √(uᵀ
-    /// A⁺ u / 1ᵀ A'⁺ 1)`, with `A'` the coupling of the points that bounce. Never faster than
-    /// Newton's; for a ball, one point whose coupling is the same wherever it bounces,
-    /// Newton's.
+    /// frictionless. So the speed is at most the one that gives the points that bounce `e²` of
+    /// the energy the impact took: what the landing step took from the pair (the drop of the
+    /// energy the integrator keeps in free flight, [`Impacts::kept_energy`]), and what stopping
+    /// the points that bounce still takes now (a face slapping down after its corner landed):
+    /// `e √(D / 1ᵀ A⁺ 1)` with `D` that energy, twice over, and `A` the points' coupling
+    /// ([`Impacts::coupling`]). The landing step's drop is counted at most as what stopping the
+    /// points that met would take ([`Touchdown::stopping`]): a body touching others as well
+    /// loses energy to them. Never faster than Newton's; a ball, met and bounced at one point
+    /// through its centre, bounces at Newton's speed.
     pub(crate) fn bounce_speed(&self, contact: &Contact, met: Touchdown) -> f64 {
         if met.speed <= self.settings.restitution_threshold {
             return 0.0;
         }
-        let settings = self.settings;
+        let (settings, pull, dt) = (self.settings, self.closing_pull(contact), self.dt);
         let bouncing: Vec<Point2<f64>> = points(contact)
             .filter(|&(point, &depth)| {
-                settings.has_landed(depth) || self.approach(contact, point) * self.dt >= -depth
+                settings.has_landed(depth) || self.approach(contact, point) * dt >= -depth
             })
             .map(|(point, _)| *point)
             .collect();
         let newton = contact.material.restitution * met.speed;
-        let speed = if bouncing.is_empty() {
-            newton
+        // Twice the energy a bounce at unit speed gives the points that bounce.
+        let unit = self.stopping(contact, &bouncing, &DVector::repeat(bouncing.len(), 1.0));
+        let speed = if unit > 0.0 {
+            // Their approach now, as the speed met at reads it (at the surface, module doc).
+            let approaching = DVector::from_iterator(
+                bouncing.len(),
+                (bouncing.iter()).map(|p| (self.approach(contact, p) + 0.5 * pull * dt).max(0.0)),
+            );
+            let still = self.stopping(contact, &bouncing, &approaching);
+            let landing = (met.energy - self.kept_energy(contact)).clamp(0.0, met.stopping);
+            newton.min(contact.material.restitution * ((landing + still) / unit).sqrt())
         } else {
-            // Twice the energy a bounce at unit speed gives the points that bounce.
-            let unit = self.stopping(contact, &bouncing, &DVector::repeat(bouncing.len(), 1.0));
-            if unit > 0.0 {
-                newton.min(contact.material.restitution * (met.stopping / unit).sqrt())
-            } else {
-                newton
-            }
+            newton
         };
-        let pull = self.closing_pull(contact);
-        (speed - 0.5 * pull * self.dt).max(0.0)
+        (speed - 0.5 * pull * dt).max(0.0)
+    }
+
+    /// Twice the energy of `contact`'s dynamic bodies as semi-implicit Euler keeps it in free
+    /// flight (J): kinetic at `v + g dt / 2`, the velocity at the step's end (the velocity `v`
+    /// that moved a body stands for the step's middle, module doc), and potential.
+    fn kept_energy(&self, contact: &Contact) -> f64 {
+        let g = self.gravity;
+        [contact.body_a, contact.body_b]
+            .iter()
+            .map(|id| &self.bodies[id.0])
+            .filter(|body| body.is_dynamic())
+            .map(|body| {
+                let v = body.linear_velocity();
+                let back = v + g * (self.dt / 2.0);
+                let translation = body.mass() * (back.norm_squared() - v.norm_squared());
+                2.0 * body.kinetic_energy() + translation
+                    - 2.0 * body.mass() * g.dot(&body.centre.coords)
+            })
+            .sum()
     }
 
     /// How fast `contact`'s bodies close on each other along its normal at `point` (m/s).
@@ -208,7 +247,7 @@ impl Impacts<'_> {
     /// corners of a face, three of them enough to hold it). 0 where the pair cannot be moved.
     fn stopping(&self, contact: &Contact, points: &[Point2<f64>], speeds: &DVector<f64>) -> f64 {
         let coupling = self.coupling(contact, points);
-        let largest = coupling.diagonal().max();
+        let largest = coupling.diagonal().iter().fold(0.0, |m: f64, &x| m.max(x));
         if largest <= 0.0 {
             return 0.0;
         }
@@ -258,6 +297,7 @@ mod tests {
         let met = Touchdown {
             speed: met_at,
             stopping: bodies[1].mass() * met_at * met_at,
+            energy: 0.0,
         };
         impacts.landing(contact, met, contact.bounce_speed).speed
     }
@@ -343,10 +383,12 @@ mod tests {
             dt: DT,
             settings: &settings,
         };
-        // A ball met along its normal: stopping it takes its kinetic energy along the normal.
+        // A ball met along its normal: stopping it takes its kinetic energy along the normal,
+        // and its landing took that.
         let met = |speed: f64| Touchdown {
             speed,
             stopping: bodies[1].mass() * speed * speed,
+            energy: impacts.kept_energy(&contact) + bodies[1].mass() * speed * speed,
         };
         let bounce = impacts.bounce_speed(&contact, met(4.0));
         assert!(
@@ -361,8 +403,10 @@ mod tests {
     /// restitution 1: lifted evenly at its four corners, it moves as 1 kg (`1ᵀ A⁺ 1` = 1 kg:
     /// the closed form, not the code's). Met at 3 m/s at one corner alone (the coupling there
     /// `1/m + (r × n)ᵀ I⁻¹ (r × n)` = 1 + 0.15² · 2 / (0.3² / 6) = 4 per kg, so stopping it
-    /// took `v² / 4` = 2.25 J, twice over), its face bounces at half Newton's speed, giving back
-    /// that energy. Met where stopping took more than a bounce at Newton's speed gives back,
+    /// takes `v² / 4` = 2.25 J, twice over), its landing having taken that, its face bounces at
+    /// half Newton's speed, giving it back. A landing that took less (1 J, twice over) gives
+    /// back less (1 m/s); one that took more (a body touching others too) counts as stopping the
+    /// corner; and where stopping took more than a bounce at Newton's speed gives back,
     /// Newton's speed, not more.
     #[test]
     fn a_face_bounces_with_the_energy_its_corner_met_with() {
@@ -404,13 +448,20 @@ mod tests {
         // inertia is m s² / 6 about every axis.
         let corner = 1.0 + 0.15f64.powi(2) * 2.0 / (0.09 / 6.0);
         assert!((corner - 4.0).abs() < 1e-12);
-        let met = |stopping| Touchdown {
+        // At rest without gravity, the pair keeps no energy now: the landing took `energy`.
+        let met = |stopping, energy| Touchdown {
             speed: 3.0,
             stopping,
+            energy,
         };
-        let bounce = impacts.bounce_speed(&contact, met(9.0 / corner));
+        let stop_corner = 9.0 / corner;
+        let bounce = impacts.bounce_speed(&contact, met(stop_corner, stop_corner));
         assert!((bounce - 1.5).abs() < 1e-9, "{bounce}");
-        let bounce = impacts.bounce_speed(&contact, met(18.0));
+        let bounce = impacts.bounce_speed(&contact, met(stop_corner, 1.0));
+        assert!((bounce - 1.0).abs() < 1e-9, "{bounce}");
+        let bounce = impacts.bounce_speed(&contact, met(stop_corner, 10.0));
+        assert!((bounce - 1.5).abs() < 1e-9, "{bounce}");
+        let bounce = impacts.bounce_speed(&contact, met(18.0, 18.0));
         assert!((bounce - 3.0).abs() < 1e-12, "{bounce}");
     }
 }

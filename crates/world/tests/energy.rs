@@ -49,9 +49,10 @@ fn random_dropped_scenes_never_gain_energy() {
 /// random turns, 3 s at 60 Hz, under every contact model, frictionless and with friction 0.5
 /// and 1: each impact keeps at most 0.81 of the energy the approach brings, so the energy
 /// never comes back up to where it started. The energy read is the one the integrator keeps
-/// in free flight, the kinetic energy at the velocity half a step of gravity back from the
-/// step's end (`v + g dt / 2`, semi-implicit Euler's): the plain total swings by `v g dt / 2`
-/// about it (up to 4% of the drop's energy at the floor), which would hide a gain or fake one.
+/// in free flight, kinetic at `v + g dt / 2`, the velocity at the step's end (semi-implicit
+/// Euler moves a body by `v`, which stands for the step's middle): the plain total swings by
+/// `v g dt / 2` about it (up to 4% of the drop's energy at the floor), which would hide a gain
+/// or fake one.
 ///
 /// Before the landing speed was taken at the centroid of the points that land, every landed
 /// point bounced at the fastest one's speed: a face coming down tilted and turning bounced
