@@ -483,6 +483,44 @@ fn two_balls_collide_as_the_closed_form_of_a_frictionless_impact() {
     }
 }
 
+/// Edge of the cubes of [`thrown_cubes`] (m).
+const THROWN_SIDE: f64 = 0.3;
+
+/// Two cubes of [`THROWN_SIDE`] and 1 kg, "a" and "b", turned by `turns`, thrown at each other
+/// at `speed` each along a diagonal off the axes from 1.2 m apart, without gravity.
+fn thrown_cubes(speed: f64, turns: [UnitQuaternion<f64>; 2]) -> World {
+    let direction = thrown_direction();
+    let cube = |name: &str, at: f64, turn: UnitQuaternion<f64>| {
+        BodyDesc::dynamic(Shape::cuboid([THROWN_SIDE; 3]))
+            .name(name)
+            .mass(1.0)
+            .position((direction * at).into())
+            .rotation(turn)
+            .velocity((direction * (-at.signum() * speed)).into())
+    };
+    World::builder()
+        .gravity([0.0; 3])
+        .body(cube("a", -0.6, turns[0]))
+        .body(cube("b", 0.6, turns[1]))
+        .build()
+        .expect("a valid scene")
+}
+
+/// The diagonal [`thrown_cubes`] are thrown along.
+fn thrown_direction() -> Vector3<f64> {
+    Vector3::new(1.0, 2.0, 2.0) / 3.0
+}
+
+/// How deep the cubes of [`thrown_cubes`] overlap now ([`cube_overlap`]).
+fn thrown_cubes_overlap(world: &World) -> f64 {
+    let [a, b] = ["a", "b"].map(|name| world.body(name).expect("the cube"));
+    cube_overlap(
+        THROWN_SIDE,
+        (&a.centre_of_mass(), &a.rotation()),
+        (&b.centre_of_mass(), &b.rotation()),
+    )
+}
+
 /// How deep two cubes of edge `side` overlap (m; 0 apart), centred at `a` and `b` and turned
 /// by `ra` and `rb`: the least overlap of their projections over the fifteen axes of the
 /// separating-axis test (each cube's three face normals and the nine crossings of their
@@ -521,34 +559,13 @@ fn cube_overlap(
 /// them 12.0 and 13.4 cm deep (2 and 3 starts past a third of the cube).
 #[test]
 fn cubes_thrown_at_each_other_do_not_sink_into_each_other_the_step_after_they_meet() {
-    let side = 0.3;
-    let direction = Vector3::new(1.0, 2.0, 2.0) / 3.0;
     for (speed, bound) in [(10.0, 0.10), (20.0, 0.12)] {
         let mut random = Random::new(23);
         for start in 0..100 {
-            let (turn_a, turn_b) = (turned(&mut random), turned(&mut random));
-            let cube = |name: &str, at: f64, turn: UnitQuaternion<f64>| {
-                BodyDesc::dynamic(Shape::cuboid([side; 3]))
-                    .name(name)
-                    .mass(1.0)
-                    .position((direction * at).into())
-                    .rotation(turn)
-                    .velocity((direction * (-at.signum() * speed)).into())
-            };
-            let mut world = World::builder()
-                .gravity([0.0; 3])
-                .body(cube("a", -0.6, turn_a))
-                .body(cube("b", 0.6, turn_b))
-                .build()
-                .expect("a valid scene");
+            let mut world = thrown_cubes(speed, [turned(&mut random), turned(&mut random)]);
             for step in 0..60 {
                 world.step(DT).expect("a step");
-                let [a, b] = ["a", "b"].map(|name| world.body(name).expect("the cube"));
-                let overlap = cube_overlap(
-                    side,
-                    (&a.centre_of_mass(), &a.rotation()),
-                    (&b.centre_of_mass(), &b.rotation()),
-                );
+                let overlap = thrown_cubes_overlap(&world);
                 assert!(
                     overlap <= bound,
                     "at {speed} m/s, start {start}, step {step}: {overlap} m deep"
@@ -568,38 +585,15 @@ fn cubes_thrown_at_each_other_do_not_sink_into_each_other_the_step_after_they_me
 /// slop and the margin, short of which it does not act (to rounding); and they do meet.
 #[test]
 fn cubes_thrown_at_each_other_end_their_first_overlapping_step_at_the_slop() {
-    let side = 0.3;
-    let direction = Vector3::new(1.0, 2.0, 2.0) / 3.0;
     let mut random = Random::new(17);
     for speed in [5.0, 10.0, 20.0] {
         for start in 0..20 {
-            let (turn_a, turn_b) = (turned(&mut random), turned(&mut random));
-            let cube = |name: &str, at: f64, turn: UnitQuaternion<f64>| {
-                let centre = direction * at;
-                let velocity = direction * (-at.signum() * speed);
-                BodyDesc::dynamic(Shape::cuboid([side; 3]))
-                    .name(name)
-                    .mass(1.0)
-                    .position(centre.into())
-                    .rotation(turn)
-                    .velocity(velocity.into())
-            };
-            let mut world = World::builder()
-                .gravity([0.0; 3])
-                .body(cube("a", -0.6, turn_a))
-                .body(cube("b", 0.6, turn_b))
-                .build()
-                .expect("a valid scene");
+            let mut world = thrown_cubes(speed, [turned(&mut random), turned(&mut random)]);
             let settings = *world.settings();
             let bound = settings.contact.slop + settings.contact_margin;
             let first_overlap = (0..60).find_map(|_| {
                 world.step(DT).expect("a step");
-                let [a, b] = ["a", "b"].map(|name| world.body(name).expect("the cube"));
-                let overlap = cube_overlap(
-                    side,
-                    (&a.centre_of_mass(), &a.rotation()),
-                    (&b.centre_of_mass(), &b.rotation()),
-                );
+                let overlap = thrown_cubes_overlap(&world);
                 (overlap > 0.0).then_some(overlap)
             });
             // Stopped by their speculative contact exactly at the surface, they may never overlap.
@@ -611,7 +605,7 @@ fn cubes_thrown_at_each_other_end_their_first_overlapping_step_at_the_slop() {
             // They did meet: each came out slower along its throw than it went in.
             let a = world.body("a").expect("the cube");
             assert!(
-                a.linear_velocity().dot(&direction) < 0.99 * speed,
+                a.linear_velocity().dot(&thrown_direction()) < 0.99 * speed,
                 "at {speed} m/s, start {start}: the cubes missed each other"
             );
         }
