@@ -86,15 +86,14 @@ impl Impacts<'_> {
     /// module doc for the integrator's speed): the speed of its points still apart that close
     /// their gaps in the step, taken at their centroid with their mean gap, the energy it takes
     /// to stop them ([`Touchdown::stopping`]) and the pair's energy as the step starts — or
-    /// `met`, the last contact's landing,
-    /// when faster and no point has landed yet (a landing the solve left short of the surface
-    /// lands again, the speed kept). None for a pair that does not bounce, whose points apart
-    /// do not close their gaps in the step, or that bounces in this step at `bounce_speed`
-    /// ([`Impacts::bounce_speed`]; the contact models bounce its landed and closing points
-    /// both). Read off the contact instead, the bounce was the last step's, or none for a
-    /// contact found afresh: a pair bounced, handed its landing on again, and bounced a second
-    /// time on the next step (two cubes with restitution 0.9 thrown at each other parted with
-    /// up to 1.44 times their energy).
+    /// `met`, the last contact's landing, when faster and no point has landed yet (a landing
+    /// the solve left short of the surface lands again, the speed kept). None for a pair that
+    /// does not bounce, whose points apart do not close their gaps in the step, or that
+    /// bounces in this step at `bounce_speed` ([`Impacts::bounce_speed`]; the contact models
+    /// bounce its landed and closing points both). Read off the contact instead, the bounce
+    /// was the last step's, or none for a contact found afresh: a pair bounced, handed its
+    /// landing on again, and bounced a second time on the next step (two cubes with
+    /// restitution 0.9 thrown at each other parted with up to 1.44 times their energy).
     pub(crate) fn landing(
         &self,
         contact: &Contact,
@@ -206,8 +205,8 @@ impl Impacts<'_> {
             .filter(|body| body.is_dynamic())
             .map(|body| {
                 let v = body.linear_velocity();
-                let back = v + g * (self.dt / 2.0);
-                let translation = body.mass() * (back.norm_squared() - v.norm_squared());
+                let at_end = v + g * (self.dt / 2.0);
+                let translation = body.mass() * (at_end.norm_squared() - v.norm_squared());
                 2.0 * body.kinetic_energy() + translation
                     - 2.0 * body.mass() * g.dot(&body.centre.coords)
             })
