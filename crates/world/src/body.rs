@@ -516,26 +516,16 @@ impl Body {
         self.linear_velocity + self.angular_velocity.cross(&(p - self.centre))
     }
 
-    /// How fast a unit impulse along the unit `normal` at `q` (world) moves this body's point
-    /// at `p` along it: `1/m + (r_p × n)ᵀ I⁻¹ (r_q × n)` with the arms from the centre of
-    /// mass; 0 for a body no impulse moves (fixed, kinematic). A ball's impulses along a
-    /// normal of its surface act on the line through its centre, wherever the point stands
-    /// along the contact: a ball's arms are taken from its centre.
-    pub(crate) fn normal_coupling(
-        &self,
-        p: &Point3<f64>,
-        q: &Point3<f64>,
-        normal: &Vector3<f64>,
-    ) -> f64 {
-        if !self.is_dynamic() {
-            return 0.0;
-        }
-        let moment = |point: &Point3<f64>| match self.shape {
-            Shape::Sphere { .. } => (self.position() - self.centre).cross(normal),
-            _ => (point - self.centre).cross(normal),
+    /// The moment `r × n` about the centre of mass of a unit impulse along the unit `normal`
+    /// at `p` (world). A ball's impulses along a normal of its surface act on the line through
+    /// its centre, wherever the point stands along the contact: a ball's arm is taken from its
+    /// centre.
+    pub(crate) fn normal_moment(&self, p: &Point3<f64>, normal: &Vector3<f64>) -> Vector3<f64> {
+        let arm = match self.shape {
+            Shape::Sphere { .. } => self.position() - self.centre,
+            _ => p - self.centre,
         };
-        let inv_inertia = self.solver_body().inv_inertia_world;
-        1.0 / self.mass + moment(p).dot(&(inv_inertia * moment(q)))
+        arm.cross(normal)
     }
 
     /// The body-frame inertia tensor, its inverse and its principal frame.

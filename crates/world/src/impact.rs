@@ -43,7 +43,8 @@ pub(crate) struct Touchdown {
     pub speed: f64,
     /// Twice the kinetic energy it takes to stop those points along the normal, each at the
     /// speed it met at (J): `uᵀ A⁺ u`, `u` their speeds and `A` the pair's coupling of their
-    /// normal velocities ([`Impacts::coupling`]); what a bounce may give back `e²` of.
+    /// normal velocities ([`Impacts::coupling`]); the most the landing step's energy drop
+    /// counts for in the bounce ([`Impacts::bounce_speed`]).
     pub stopping: f64,
     /// Twice the pair's energy as the integrator keeps it in free flight, when the step it
     /// landed in started (J; [`Impacts::kept_energy`]).
@@ -181,10 +182,10 @@ impl Impacts<'_> {
         let unit = self.stopping(contact, &bouncing, &DVector::repeat(bouncing.len(), 1.0));
         let speed = if unit > 0.0 {
             // Their approach now, as the speed met at reads it (at the surface, module doc).
-            let approaching = DVector::from_iterator(
-                bouncing.len(),
-                (bouncing.iter()).map(|p| (self.approach(contact, p) + 0.5 * pull * dt).max(0.0)),
-            );
+            let at_surface =
+                |p: &Point2<f64>| (self.approach(contact, p) + 0.5 * pull * dt).max(0.0);
+            let approaching =
+                DVector::from_iterator(bouncing.len(), bouncing.iter().map(at_surface));
             let still = self.stopping(contact, &bouncing, &approaching);
             let landing = (met.energy - self.kept_energy(contact)).clamp(0.0, met.stopping);
             newton.min(contact.material.restitution * ((landing + still) / unit).sqrt())
@@ -230,13 +231,18 @@ impl Impacts<'_> {
     fn coupling(&self, contact: &Contact, points: &[Point2<f64>]) -> DMatrix<f64> {
         let n = &contact.frame.normal;
         let world: Vec<_> = points.iter().map(|p| contact.frame.to_world(p)).collect();
-        let (a, b) = (
-            &self.bodies[contact.body_a.0],
-            &self.bodies[contact.body_b.0],
-        );
+        // Each body's inverse mass and world inertia (zero for a body no impulse moves) and
+        // its moments at the points: entry `(i, j)` sums `1/m + mᵢᵀ I⁻¹ mⱼ` over the two.
+        let [a, b] = [contact.body_a, contact.body_b].map(|id| {
+            let body = &self.bodies[id.0];
+            let moments: Vec<_> = world.iter().map(|p| body.normal_moment(p, n)).collect();
+            (body.solver_body(), moments)
+        });
         DMatrix::from_fn(points.len(), points.len(), |i, j| {
-            let (p, q) = (&world[i], &world[j]);
-            a.normal_coupling(p, q, n) + b.normal_coupling(p, q, n)
+            [&a, &b]
+                .iter()
+                .map(|(body, m)| body.inv_mass + m[i].dot(&(body.inv_inertia_world * m[j])))
+                .sum()
         })
     }
 
