@@ -445,7 +445,7 @@ pub(crate) fn build(
         let cut = contact.depth() - within;
         for (vertex, &depth) in contact.support.vertices().iter().zip(&contact.depths) {
             if depth < cut {
-                let gap = depth - landing_level(cut);
+                let gap = depth - vertex::landing_level(cut);
                 let at = (vertex, gap, contact.bounce_speed);
                 vertex::build_point(contact, at, None, dt, settings, problem, biases);
             }
@@ -454,24 +454,16 @@ pub(crate) fn build(
     // The vertices of the bearing part that a tipping support sinks, and the contact's landing
     // points beside its support (a rim beside its lowest point; module doc): each may come
     // down to the support's deepest level in this step and no further.
-    let deepest = landing_level(contact.depth());
     let tipping = tipping_vertices(bearing.unwrap_or(contact), &problem.bodies, dt, settings);
     let landing = contact.landing.iter().map(|l| (&l.point, &l.depth));
-    for (point, &depth) in tipping.chain(landing) {
-        let gap = (depth - deepest).min(0.0);
-        let at = (point, gap, 0.0);
-        vertex::build_point(contact, at, None, dt, settings, problem, biases);
-    }
-}
-
-/// The level (depth, m) a landing block's point may come down to within the step: the support's
-/// `level` where the bodies overlap there, the other body's surface where they are still
-/// apart. A speculative contact's support has a gap too, which its own rows may close in the
-/// step: measured from the support's level instead, the gap of a cube's far corners 0.5 m
-/// behind a face 0.7 m from a wall was 0.5 m, and a cube thrown face first at the wall at
-/// 60 m/s (1 m a step) was held to 30 m/s by them, stopped 0.19 m short and sent spinning.
-fn landing_level(level: f64) -> f64 {
-    level.max(0.0)
+    vertex::build_landing(
+        contact,
+        tipping.chain(landing),
+        dt,
+        settings,
+        problem,
+        biases,
+    );
 }
 
 /// The vertices of `contact`'s support (with their depths) that the bodies' relative turn
@@ -506,7 +498,7 @@ fn build_bearing(
     biases: &mut Vec<f64>,
 ) {
     if contact.support.kind() == PolygonKind::Point {
-        return vertex::build(contact, dt, settings, problem, biases);
+        return vertex::build_support(contact, dt, settings, problem, biases);
     }
     let frame = &contact.frame;
     // A segment takes its 5-row block (crate::segment): the tilt axis across it and the tilt

@@ -102,13 +102,14 @@ impl ContactModel {
 
     /// The support vertex that row `row` (counted from the contact's first row) of
     /// [`ContactModel::build`] acts at, for a contact of `vertices` support vertices; `None` for
-    /// rows of the whole contact (the face model's, the patch model's friction and twist).
+    /// rows of the whole contact (the face model's, the patch model's friction and twist) and
+    /// for a landing point's ([`Contact::landing`](crate::Contact::landing)).
     /// With the vertex's feature id this names a row across steps, for exact warm starting of
     /// the vertex and patch models; the face model's block is carried whole instead, as a
     /// [`ContactImpulse`](crate::ContactImpulse).
     pub fn row_vertex(self, vertices: usize, row: usize) -> Option<usize> {
         match self {
-            Self::Vertex => Some(row / vertex::ROWS_PER_VERTEX),
+            Self::Vertex => Some(row / vertex::ROWS_PER_VERTEX).filter(|&v| v < vertices),
             Self::Patch => (row < vertices).then_some(row),
             Self::Face => None,
         }

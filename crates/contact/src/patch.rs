@@ -10,6 +10,7 @@ use crate::jacobian::{
     angular_jacobian, block_friction_motion, point_jacobian, point_motion, twist_rate,
 };
 use crate::target::normal_target;
+use crate::vertex;
 use crate::{Contact, ContactProjection, ContactSettings, FrictionCone};
 
 /// The projection of a patch block: rows `λ₁…λₖ` (normals), then `f1, f2, τ`.
@@ -73,7 +74,9 @@ impl Projection for PatchProjection {
     }
 }
 
-/// Appends the patch block and each row's penetration bias to `biases`. The contact must be
+/// Appends the patch block, then the vertex model's block for each landing point
+/// ([`vertex::build_landing`]: as under the face model, a cylinder on one rim point has the
+/// rim beside it held), and each row's penetration bias to `biases`. The contact must be
 /// validated.
 pub(crate) fn build(
     contact: &Contact,
@@ -141,6 +144,8 @@ pub(crate) fn build(
             cone: settings.friction_cone,
         }),
     });
+    let landing = contact.landing.iter().map(|l| (&l.point, &l.depth));
+    vertex::build_landing(contact, landing, dt, settings, problem, biases);
 }
 
 /// The friction centre of a patch: the average of the support vertices (plane coordinates).

@@ -6,7 +6,7 @@
 //! while its bodies could not have closed the gap ([`crate::apart`]).
 
 use nalgebra::Vector3;
-use tatami_contact::{Contact, ContactModel, Material};
+use tatami_contact::{Contact, Material};
 use tatami_lcp::BodyId;
 
 use crate::WorldSettings;
@@ -112,7 +112,7 @@ pub(crate) struct CollisionSettings {
     /// every moved pair's afresh (the named models, see [`crate::carry`]).
     pub carry: Option<CarryBounds>,
     /// How far back (m) a landing point may stand ([`tatami_contact::Contact::landing`]): the
-    /// margin under the face model, which reads them; 0, none, under the others.
+    /// margin.
     pub landing_band: f64,
 }
 
@@ -130,13 +130,12 @@ impl CollisionSettings {
                 settings.contact_margin,
             )
         });
-        let face = settings.model == ContactModel::Face;
         Self {
             margin: settings.contact_margin,
             feature_angle: settings.feature_angle,
             ids,
             carry,
-            landing_band: if face { settings.contact_margin } else { 0.0 },
+            landing_band: settings.contact_margin,
         }
     }
 }

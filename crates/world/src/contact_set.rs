@@ -511,8 +511,8 @@ impl ContactSet {
     /// other rows from the impulse their key had (rows whose key is new keep zero). A pair with
     /// nothing stored under `model` (new, or last solved under another model) starts instead
     /// with the weight it carries at rest under `weight_per_mass` (gravity × dt) spread evenly
-    /// over its normal rows — see [`crate::load_estimate`]. The face model's landing blocks
-    /// start from zero ([`started_blocks`]).
+    /// over its normal rows — see [`crate::load_estimate`]. Landing blocks start from zero
+    /// ([`started_blocks`]).
     pub(crate) fn warm_start(
         &mut self,
         model: ContactModel,
@@ -534,7 +534,8 @@ impl ContactSet {
             if entry.state.blocks.is_empty() {
                 continue;
             }
-            let started = started_blocks(model, &entry.state.blocks);
+            let vertices = entry.contact.support.vertices().len();
+            let started = started_blocks(model, &entry.state.blocks, vertices);
             let rows = rows_of(problem, &started);
             let stored = match (&entry.state.last, model) {
                 (Solved::Face(impulse), ContactModel::Face) => {
@@ -568,7 +569,8 @@ impl ContactSet {
     /// under the face model the impulse all the pair's blocks applied to body A (its own and
     /// its landing blocks': where a landing block pivoted a tipping body, the next step's block
     /// starts with that load at that edge, instead of rebuilding it from zero; a 1000-cube
-    /// pile settled to fewer deep contacts with it), other rows' impulses by key.
+    /// pile settled to fewer deep contacts with it), other rows' impulses by key (but for the
+    /// landing blocks', which start from zero).
     pub(crate) fn store(&mut self, model: ContactModel, problem: &Problem<ContactProjection>) {
         let next = &mut self.next_impulses;
         next.clear();
@@ -588,6 +590,9 @@ impl ContactSet {
                     entry.contact.centre_a,
                 )),
                 (_, ContactModel::Vertex | ContactModel::Patch) => {
+                    let vertices = entry.contact.support.vertices().len();
+                    let started = started_blocks(model, &state.blocks, vertices);
+                    let rows = rows_of(problem, &started);
                     let start = next.len();
                     row_keys(model, &state.features, rows.len(), &mut self.keys);
                     next.extend(
@@ -628,15 +633,16 @@ pub(crate) fn support_of(contact: &Contact, gravity: &Vector3<f64>) -> Support {
     }
 }
 
-/// The blocks of a pair's `blocks` under `model` that its warm start starts: under the face
-/// model its own block, the first, with everything the pair applied (the landing blocks of a
-/// tilted or tipping face follow it and start from zero: they catch a landing, a step's
-/// event); under the others all.
-fn started_blocks(model: ContactModel, blocks: &Range<usize>) -> Range<usize> {
-    match model {
-        ContactModel::Face => blocks.start..blocks.end.min(blocks.start + 1),
-        ContactModel::Vertex | ContactModel::Patch => blocks.clone(),
-    }
+/// The blocks of a pair's `blocks` under `model` that its warm start starts, for a support of
+/// `vertices` vertices: the face and patch models' own block, the first (the face model's
+/// with everything the pair applied), the vertex model's block of each support vertex. The
+/// landing blocks after them start from zero: they catch a landing, a step's event.
+fn started_blocks(model: ContactModel, blocks: &Range<usize>, vertices: usize) -> Range<usize> {
+    let own = match model {
+        ContactModel::Face | ContactModel::Patch => 1,
+        ContactModel::Vertex => vertices,
+    };
+    blocks.start..blocks.end.min(blocks.start + own)
 }
 
 /// Spreads the normal impulse `load` evenly over the normal rows of `blocks` (each block's
