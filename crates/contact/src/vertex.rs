@@ -88,8 +88,8 @@ pub(crate) fn landing_level(level: f64) -> f64 {
 
 /// Appends the 3-row block of one point of `contact`'s plane, `vertex` in its frame, at `depth`,
 /// whose normal row bounces at `bounce_speed` once it meets the other body
-/// ([`Contact::bounce_speed`]: the contact's for a point of its support, 0 for the face model's
-/// landing blocks, which catch a turn and bounce on their own approach alone). A point of a
+/// ([`Contact::bounce_speed`]: the contact's for a point of its support, 0 for the landing
+/// blocks, which catch a turn and bounce on their own approach alone). A point of a
 /// face resting on a face, given the pair's `weld`, has its friction rows keep the two bodies'
 /// material points together over the step while they stick ([`friction_motion`]).
 pub(crate) fn build_point(

@@ -283,6 +283,9 @@ struct Reach {
     gravity: f64,
     /// The pair's feature angle, grown by its turn in the step, when it turns.
     angle: Option<FeatureAngle>,
+    /// Whether each body may be stopped within the step by its other contacts
+    /// ([`Travel::held`]).
+    held: [bool; 2],
 }
 
 impl Reach {
@@ -296,6 +299,7 @@ impl Reach {
             dt,
             gravity: gravity.norm(),
             angle: None,
+            held: [false; 2],
         }
     }
 }
@@ -318,6 +322,7 @@ fn speculative(
     Reach {
         closing: a.closing(b),
         turns: a.turn + b.turn,
+        held: [a.held, b.held],
         // A turn under a tenth of the angle would change little, and costs the trigonometry.
         angle: (!rounded && turning > 0.1 * angle)
             .then(|| FeatureAngle::new((angle + turning).min(MAX_FEATURE_ANGLE))),
@@ -325,11 +330,56 @@ fn speculative(
     }
 }
 
+/// How a pair may move in a step, for a speculative contact: each body at its velocity, or
+/// stopped along the contact normal. A dynamic body may be stopped within the step by its
+/// other contacts, and the other then closes on it at its own speed: a box falling onto the
+/// floor with a box falling just above it, at the same speed and so not closing on it, was
+/// stopped by the floor, and the upper box came down 16 mm in that step with no contact between
+/// them (9 mm into the lower box, three 0.3 m boxes dropped 3 cm onto each other at 60 Hz).
+/// Only the normal part of its velocity is stopped: a ball rolling on past where another falls
+/// keeps out of its way, and gets no contact from where it is now.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Motion {
+    a_moves: bool,
+    b_moves: bool,
+}
+
+impl Motion {
+    /// Both bodies at their velocities, then each [held](Travel::held) one stopped.
+    fn of_pair(reach: &Reach) -> impl Iterator<Item = Self> {
+        let both = Self {
+            a_moves: true,
+            b_moves: true,
+        };
+        let [held_a, held_b] = reach.held;
+        let a_stopped = held_a.then_some(Self {
+            a_moves: false,
+            ..both
+        });
+        let b_stopped = held_b.then_some(Self {
+            b_moves: false,
+            ..both
+        });
+        [Some(both), a_stopped, b_stopped].into_iter().flatten()
+    }
+
+    /// `velocity`, or its part across `normal` when the body is stopped along it.
+    fn along(moves: bool, velocity: Vector3<f64>, normal: &Vector3<f64>) -> Vector3<f64> {
+        if moves {
+            velocity
+        } else {
+            velocity - normal * velocity.dot(normal)
+        }
+    }
+}
+
 /// Whether a point of support `s` between bodies `a` and `b` closes its gap within the step
-/// of `reach` at the bodies' velocities, the relative velocity its gravity may add included.
-fn closes_in_step(a: &Body, b: &Body, s: &Support, reach: &Reach) -> bool {
+/// of `reach` as the bodies move under `motion`, the relative velocity gravity may add
+/// included (when it pulls one of the bodies moving along the normal and not the other).
+fn closes_in_step(a: &Body, b: &Body, s: &Support, reach: &Reach, motion: Motion) -> bool {
     let (dt, n) = (reach.dt, &s.frame.normal);
-    let pulled = if a.is_dynamic() != b.is_dynamic() {
+    let falls = |moves: bool, body: &Body| moves && body.is_dynamic();
+    let pulled = if falls(motion.a_moves, a) != falls(motion.b_moves, b) {
         reach.gravity * dt
     } else {
         0.0
@@ -340,23 +390,28 @@ fn closes_in_step(a: &Body, b: &Body, s: &Support, reach: &Reach) -> bool {
         .zip(&s.depths)
         .any(|(vertex, &depth)| {
             let p = s.frame.to_world(vertex);
+            let relative = Motion::along(motion.a_moves, a.velocity_at(&p), n)
+                - Motion::along(motion.b_moves, b.velocity_at(&p), n);
             // `n` points from B into A: A closes on B against it.
-            let closing = -(a.velocity_at(&p) - b.velocity_at(&p)).dot(n) + pulled;
+            let closing = -relative.dot(n) + pulled;
             closing * dt >= -depth
         })
 }
 
 /// Whether bodies `a` and `b`, from their colliders' poses and moving on at their centres'
-/// velocities, touch within the step, the most their turns may move their points
-/// ([`Reach::turns`]) allowed for, and their normal where they first do.
+/// velocities under `motion` (stopped along `normal`), touch within the step, the most their
+/// turns may move their points ([`Reach::turns`]) allowed for, and their normal where they
+/// first do.
 fn meet_within(
     (a, collider_a, pose_a): (&Body, &Collider, &parry3d_f64::math::Pose),
     (b, collider_b, pose_b): (&Body, &Collider, &parry3d_f64::math::Pose),
-    reach: &Reach,
+    (reach, motion, normal): (&Reach, Motion, &Vector3<f64>),
 ) -> Cast {
+    let velocity_a = Motion::along(motion.a_moves, a.linear_velocity(), normal);
+    let velocity_b = Motion::along(motion.b_moves, b.linear_velocity(), normal);
     parry_bridge::meet_within(
-        (collider_a, pose_a, &a.linear_velocity()),
-        (collider_b, pose_b, &b.linear_velocity()),
+        (collider_a, pose_a, &velocity_a),
+        (collider_b, pose_b, &velocity_b),
         reach.turns,
         reach.dt,
     )
@@ -451,14 +506,20 @@ fn contact_of(
     // mixed shapes that normal left a contact 12 mm deep for seconds (not chased).
     let speculative = s.depths.iter().all(|&d| d < -reach.margin);
     if speculative {
-        if !closes_in_step(a, b, &s, reach) {
+        // The first way the pair may move in which it closes and meets, or a miss.
+        let cast = Motion::of_pair(reach)
+            .filter(|&motion| closes_in_step(a, b, &s, reach, motion))
+            .map(|motion| {
+                meet_within(
+                    (a, &geometry[i].collider, &poses[i]),
+                    (b, &geometry[j].collider, &poses[j]),
+                    (reach, motion, &s.frame.normal),
+                )
+            })
+            .find(|cast| *cast != Cast::Miss);
+        let Some(cast) = cast else {
             return Found::Nothing;
-        }
-        let cast = meet_within(
-            (a, &geometry[i].collider, &poses[i]),
-            (b, &geometry[j].collider, &poses[j]),
-            reach,
-        );
+        };
         let bouncing = a.restitution > 0.0 || b.restitution > 0.0;
         match cast {
             Cast::Miss => return Found::Nothing,
@@ -603,8 +664,10 @@ mod tests {
     /// (an edge–edge normal turns with both edges), except a point contact's (two edges
     /// crossing nearly parallel have a normal, their cross product, that a turn of under 0.1°
     /// moved by 8° at the same 0.35 mm depth), the deepest depths within the slip bound
-    /// (a carried depth is off by the slip times the slope of the surfaces where they touch,
-    /// at most the slip itself for two crossing edges), and a pair found apart afresh held only
+    /// (a carried depth is off by the slip times the slope of the surfaces where they touch),
+    /// twice it at a point (two edges crossing: their crossing runs along them as they turn,
+    /// and a hull creeping past a box's edge 0.6–0.9 mm away was carried to within 0.15 mm of
+    /// the gap found afresh, for a bound of 0.1 mm), and a pair found apart afresh held only
     /// while open nearly the margin. Cylinders are left out: their contact normal comes from a
     /// rounded core, which finds two rims crossing apart while the cylinders still overlap by
     /// a few millimetres, so a fresh contact is no reference there.
@@ -662,8 +725,13 @@ mod tests {
                     "step {step}: pair {pair:?} turned {turn}"
                 );
                 let depth = (fresh.depth() - held.depth()).abs();
+                let slip = if point {
+                    2.0 * bounds.slip
+                } else {
+                    bounds.slip
+                };
                 assert!(
-                    depth <= bounds.slip,
+                    depth <= slip,
                     "step {step}: pair {pair:?} depth off by {depth}"
                 );
             }
