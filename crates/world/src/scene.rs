@@ -9,7 +9,9 @@
 //! (`"centre_of_pressure"`, the default, or `"centroid"`, the paper's bound; see
 //! [`crate::TwistCentre`]), `bias_rate`, `slop`,
 //! `max_depenetration_speed` (m/s, > 0) and `max_velocity_bias` (m/s, ≥ 0; see
-//! [`tatami_contact::ContactSettings`]). A body may be `"kinematic": true`: it moves at its
+//! [`tatami_contact::ContactSettings`]), and `contact_margin` (m, ≥ 0; see
+//! [`WorldSettings::contact_margin`]: with `slop`, what to scale down for bodies of a
+//! centimetre or less). A body may be `"kinematic": true`: it moves at its
 //! `velocity` and `angular_velocity` whatever touches it (see [`BodyDesc::kinematic`]).
 //!
 //! Every number is checked while it is read, so an invalid scene is rejected with the field's
@@ -321,6 +323,8 @@ struct RawScene {
     #[serde(default, deserialize_with = "present")]
     slop: Option<NonNegative>,
     #[serde(default, deserialize_with = "present")]
+    contact_margin: Option<NonNegative>,
+    #[serde(default, deserialize_with = "present")]
     max_depenetration_speed: Option<Positive>,
     #[serde(default, deserialize_with = "present")]
     max_velocity_bias: Option<NonNegative>,
@@ -443,6 +447,9 @@ impl RawScene {
         }
         if let Some(slop) = self.slop {
             settings.contact.slop = slop.0;
+        }
+        if let Some(margin) = self.contact_margin {
+            settings.contact_margin = margin.0;
         }
         if let Some(speed) = self.max_depenetration_speed {
             settings.contact.max_depenetration_speed = speed.0;

@@ -7,6 +7,7 @@ mod common;
 
 use common::rejection;
 use tatami_world::scene::{Scene, SceneError};
+use tatami_world::WorldSettings;
 
 /// A valid scene with one dynamic cube, laid out one field per line so errors have known lines.
 /// `edit` replaces one line (1-based) to make it invalid.
@@ -195,17 +196,22 @@ fn solver_options_are_read() {
 fn contact_options_are_read_and_checked() {
     let text = scene_with(
         4,
-        r#"  "friction_cone": "box", "max_depenetration_speed": 2.5, "max_velocity_bias": 0, "twist_centre": "centroid","#,
+        r#"  "friction_cone": "box", "max_depenetration_speed": 2.5, "max_velocity_bias": 0, "twist_centre": "centroid", "slop": 0.0001, "contact_margin": 0.001,"#,
     );
-    let contact = Scene::from_json(&text).unwrap().settings.contact;
+    let settings = Scene::from_json(&text).unwrap().settings;
+    assert_eq!(settings.contact_margin, 0.001);
+    assert_eq!(settings.contact.slop, 0.0001);
+    let contact = settings.contact;
     assert_eq!(contact.friction_cone, tatami_world::FrictionCone::Box);
     assert_eq!(contact.twist_centre, tatami_world::TwistCentre::Centroid);
     assert_eq!(contact.max_depenetration_speed, 2.5);
     assert_eq!(contact.max_velocity_bias, 0.0);
-    let plain = Scene::from_json(&scene_with(0, ""))
-        .unwrap()
-        .settings
-        .contact;
+    let plain_settings = Scene::from_json(&scene_with(0, "")).unwrap().settings;
+    assert_eq!(
+        plain_settings.contact_margin,
+        WorldSettings::default().contact_margin
+    );
+    let plain = plain_settings.contact;
     assert_eq!(
         plain.friction_cone,
         tatami_world::FrictionCone::Circle,
@@ -219,6 +225,7 @@ fn contact_options_are_read_and_checked() {
     for (option, message) in [
         (r#"  "max_depenetration_speed": 0,"#, "> 0"),
         (r#"  "max_velocity_bias": -1,"#, "≥ 0"),
+        (r#"  "contact_margin": -0.001,"#, "≥ 0"),
         (r#"  "twist_centre": "origin","#, "unknown variant"),
     ] {
         let (field, line, got) = rejection(&scene_with(4, option));
