@@ -6,8 +6,8 @@ use std::path::Path;
 mod common;
 
 use common::rejection;
-use tatami_world::scene::{Scene, SceneError};
 use tatami_world::WorldSettings;
+use tatami_world::scene::{Scene, SceneError};
 
 /// A valid scene with one dynamic cube, laid out one field per line so errors have known lines.
 /// `edit` replaces one line (1-based) to make it invalid.
