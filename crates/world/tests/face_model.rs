@@ -640,6 +640,38 @@ fn a_standing_cylinder_spins_down_at_the_disc_rate() {
     }
 }
 
+/// A cylinder lying on its side touches the floor along a segment, which the face model holds
+/// with one 5-row block whose twist is bounded by `μ r̄ f3` about the centre of pressure, `r̄`
+/// the segment's mean distance from it. Spun about the vertical, its line of contact takes
+/// uniform pressure: torque `μ N L / 4` about `I = m (3 r² + L²) / 12`. Turned 30° about the
+/// vertical, off the floor's axes.
+#[test]
+fn a_cylinder_lying_on_its_side_spins_down_at_the_line_rate() {
+    let (mu, omega0, radius, length, mass) = (0.5, 5.0, 0.2, 1.5, 1.0);
+    let lying = || {
+        BodyDesc::dynamic(Shape::cylinder(radius, length))
+            .name("cylinder")
+            .mass(mass)
+            .position([0.0, 0.0, radius])
+            .rotation(rotation([0.0, 0.0, 1.0], 30.0) * rotation([1.0, 0.0, 0.0], 90.0))
+    };
+    let inertia = mass * (3.0 * radius * radius + length * length) / 12.0;
+    let expected = mu * mass * G * length / 4.0 / inertia;
+    let face = spin_down_rate(ContactModel::Face, mu, omega0, lying());
+    assert!(
+        (face - expected).abs() / expected < 0.03,
+        "face: {face} rad/s², closed form {expected}"
+    );
+    for model in [ContactModel::Vertex, ContactModel::Patch] {
+        let rate = spin_down_rate(model, mu, omega0, lying());
+        println!(
+            "{}: lying cylinder spin-down {rate:.3} rad/s² ({:.2}× the line rate)",
+            model.name(),
+            rate / expected
+        );
+    }
+}
+
 /// A cylinder (r 0.4 m, 0.89 m tall, as in the mixed pile) set down on its cap's rim, tilted
 /// past the feature angle about an axis off the floor's, and set wobbling about a horizontal
 /// axis across the tilt: the lowest point of its rim runs round the rim by up to tens of
