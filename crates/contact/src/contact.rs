@@ -30,8 +30,9 @@ pub struct Contact {
     /// Combined friction and restitution.
     pub material: Material,
     /// Points of either body standing off the support polygon within the contact margin, where
-    /// the touching feature would land if the body turned (usually none). A cylinder resting on the lowest point of its cap's rim touches at that
-    /// point alone, yet as it wobbles the lowest point runs round the rim; held at one point,
+    /// the touching feature would land if the body turned (usually none). A cylinder resting on
+    /// the lowest point of its cap's rim touches at that point alone, yet as it wobbles the
+    /// lowest point runs round the rim; held at one point,
     /// the rim beside it went 1 cm into the floor. A polyhedron closing on the other body
     /// faster than the margin a step has its vertices within that closing distance here too,
     /// where the turn an impact gives it would swing them down. Every model gives each a

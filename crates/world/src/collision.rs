@@ -283,9 +283,6 @@ struct Reach {
     gravity: f64,
     /// The pair's feature angle, grown by its turn in the step, when it turns.
     angle: Option<FeatureAngle>,
-    /// Whether each body may be stopped within the step by its other contacts
-    /// ([`Travel::held`]).
-    held: [bool; 2],
 }
 
 impl Reach {
@@ -299,7 +296,6 @@ impl Reach {
             dt,
             gravity: gravity.norm(),
             angle: None,
-            held: [false; 2],
         }
     }
 }
@@ -322,7 +318,6 @@ fn speculative(
     Reach {
         closing: a.closing(b),
         turns: a.turn + b.turn,
-        held: [a.held, b.held],
         // A turn under a tenth of the angle would change little, and costs the trigonometry.
         angle: (!rounded && turning > 0.1 * angle)
             .then(|| FeatureAngle::new((angle + turning).min(MAX_FEATURE_ANGLE))),
@@ -345,18 +340,17 @@ struct Motion {
 }
 
 impl Motion {
-    /// Both bodies at their velocities, then each [held](Travel::held) one stopped.
-    fn of_pair(reach: &Reach) -> impl Iterator<Item = Self> {
+    /// Both bodies at their velocities, then each dynamic one stopped ([`Travel::held`]).
+    fn of_pair(a: &Body, b: &Body) -> impl Iterator<Item = Self> {
         let both = Self {
             a_moves: true,
             b_moves: true,
         };
-        let [held_a, held_b] = reach.held;
-        let a_stopped = held_a.then_some(Self {
+        let a_stopped = a.is_dynamic().then_some(Self {
             a_moves: false,
             ..both
         });
-        let b_stopped = held_b.then_some(Self {
+        let b_stopped = b.is_dynamic().then_some(Self {
             b_moves: false,
             ..both
         });
@@ -507,7 +501,7 @@ fn contact_of(
     let speculative = s.depths.iter().all(|&d| d < -reach.margin);
     if speculative {
         // The first way the pair may move in which it closes and meets, or a miss.
-        let cast = Motion::of_pair(reach)
+        let cast = Motion::of_pair(a, b)
             .filter(|&motion| closes_in_step(a, b, &s, reach, motion))
             .map(|motion| {
                 meet_within(

@@ -512,7 +512,7 @@ impl ContactSet {
     /// nothing stored under `model` (new, or last solved under another model) starts instead
     /// with the weight it carries at rest under `weight_per_mass` (gravity × dt) spread evenly
     /// over its normal rows — see [`crate::load_estimate`]. Landing blocks start from zero
-    /// ([`started_blocks`]).
+    /// ([`Entry::started_blocks`]).
     pub(crate) fn warm_start(
         &mut self,
         model: ContactModel,
@@ -534,8 +534,7 @@ impl ContactSet {
             if entry.state.blocks.is_empty() {
                 continue;
             }
-            let vertices = entry.contact.support.vertices().len();
-            let started = started_blocks(model, &entry.state.blocks, vertices);
+            let started = entry.started_blocks(model);
             let rows = rows_of(problem, &started);
             let stored = match (&entry.state.last, model) {
                 (Solved::Face(impulse), ContactModel::Face) => {
@@ -575,6 +574,7 @@ impl ContactSet {
         let next = &mut self.next_impulses;
         next.clear();
         for entry in &mut self.entries {
+            let started = entry.started_blocks(model);
             let state = &mut entry.state;
             let rows = rows_of(problem, &state.blocks);
             state.last = match (&state.last, model) {
@@ -590,8 +590,6 @@ impl ContactSet {
                     entry.contact.centre_a,
                 )),
                 (_, ContactModel::Vertex | ContactModel::Patch) => {
-                    let vertices = entry.contact.support.vertices().len();
-                    let started = started_blocks(model, &state.blocks, vertices);
                     let rows = rows_of(problem, &started);
                     let start = next.len();
                     row_keys(model, &state.features, rows.len(), &mut self.keys);
@@ -633,16 +631,19 @@ pub(crate) fn support_of(contact: &Contact, gravity: &Vector3<f64>) -> Support {
     }
 }
 
-/// The blocks of a pair's `blocks` under `model` that its warm start starts, for a support of
-/// `vertices` vertices: the face and patch models' own block, the first (the face model's
-/// with everything the pair applied), the vertex model's block of each support vertex. The
-/// landing blocks after them start from zero: they catch a landing, a step's event.
-fn started_blocks(model: ContactModel, blocks: &Range<usize>, vertices: usize) -> Range<usize> {
-    let own = match model {
-        ContactModel::Face | ContactModel::Patch => 1,
-        ContactModel::Vertex => vertices,
-    };
-    blocks.start..blocks.end.min(blocks.start + own)
+impl Entry {
+    /// The pair's blocks under `model` that its warm start starts: the face and patch models'
+    /// own block, the first (the face model's with everything the pair applied), the vertex
+    /// model's block of each support vertex. The landing blocks after them start from zero:
+    /// they catch a landing, a step's event.
+    fn started_blocks(&self, model: ContactModel) -> Range<usize> {
+        let own = match model {
+            ContactModel::Face | ContactModel::Patch => 1,
+            ContactModel::Vertex => self.contact.support.vertices().len(),
+        };
+        let blocks = &self.state.blocks;
+        blocks.start..blocks.end.min(blocks.start + own)
+    }
 }
 
 /// Spreads the normal impulse `load` evenly over the normal rows of `blocks` (each block's

@@ -642,17 +642,20 @@ fn a_standing_cylinder_spins_down_at_the_disc_rate() {
     }
 }
 
+/// A box meeting another in [`plastic_face_impact`]: centre, half-extents, mass (infinite for a
+/// fixed or kinematic box), and linear and angular velocity.
+type ImpactBox<'a> = (&'a Point3<f64>, &'a Vector3<f64>, f64, [Vector3<f64>; 2]);
+
 /// The bodies' velocities after a frictionless, perfectly plastic impact of box 1's `+x` face on
 /// box 2's `−x` face: the faces end with no relative normal velocity and no relative tilt rate
 /// (the face model's constraint), from the normal impulse `λ` and the couple `(τy, τz)` at the
 /// patch centroid `c`, solved from their 3 × 3 linear system. Returns box 1's linear and angular
 /// velocity and the centre of pressure's offset from `c` (y, z), or `None` if `λ ≤ 0`.
-#[allow(clippy::type_complexity)]
 fn plastic_face_impact(
-    box1: (&Point3<f64>, &Vector3<f64>, f64, [Vector3<f64>; 2]),
-    box2: (&Point3<f64>, &Vector3<f64>, f64, [Vector3<f64>; 2]),
+    box1: ImpactBox,
+    box2: ImpactBox,
     c: &Point3<f64>,
-) -> Option<(Vector3<f64>, Vector3<f64>, (f64, f64))> {
+) -> Option<([Vector3<f64>; 2], [f64; 2])> {
     let inverse_inertia = |half: &Vector3<f64>, mass: f64| {
         let (x, y, z) = (half.x * half.x, half.y * half.y, half.z * half.z);
         Matrix3::from_diagonal(&Vector3::new(y + z, x + z, x + y).map(|i| 3.0 / (mass * i)))
@@ -686,7 +689,7 @@ fn plastic_face_impact(
     let system = Matrix3::from_columns(&[0, 1, 2].map(|k| residual(&Vector3::ith(k, 1.0)) - free));
     let u = system.lu().solve(&-free)?;
     let (v, w, _, _) = after(&u);
-    (u[0] > 0.0).then(|| (v, w, (u[2] / u[0], -u[1] / u[0])))
+    (u[0] > 0.0).then(|| ([v, w], [u[2] / u[0], -u[1] / u[0]]))
 }
 
 /// The scenario of Jolt's `TestEstimateCollisionResponse`
@@ -717,19 +720,11 @@ fn a_face_impact_leaves_the_plastic_closed_forms_velocities() {
         {
             for spin in [0.0, -1.0, 1.0] {
                 let x2 = x1 + Vector3::new(h1.x + h2.x - 1e-4, y, z);
-                let box2 = BodyDesc::fixed(Shape::cuboid((h2 * 2.0).into()));
+                let shape = Shape::cuboid((h2 * 2.0).into());
                 let (box2, v2, mass2) = match kind {
-                    "fixed" => (box2, Vector3::zeros(), f64::INFINITY),
-                    "kinematic" => (
-                        BodyDesc::kinematic(Shape::cuboid((h2 * 2.0).into())),
-                        -Vector3::x(),
-                        f64::INFINITY,
-                    ),
-                    _ => (
-                        BodyDesc::dynamic(Shape::cuboid((h2 * 2.0).into())).density(density),
-                        -Vector3::x(),
-                        m2,
-                    ),
+                    "fixed" => (BodyDesc::fixed(shape), Vector3::zeros(), f64::INFINITY),
+                    "kinematic" => (BodyDesc::kinematic(shape), -Vector3::x(), f64::INFINITY),
+                    _ => (BodyDesc::dynamic(shape).density(density), -Vector3::x(), m2),
                 };
                 let (v1, w1) = (Vector3::new(1.0, 1.0, 0.0), Vector3::new(0.0, spin, 0.0));
                 let converged = WorldSettings {
@@ -764,7 +759,7 @@ fn a_face_impact_leaves_the_plastic_closed_forms_velocities() {
                 let ((cy, half_y), (cz, half_z)) = (span(1), span(2));
                 let c = Point3::new(x1.x + h1.x, cy, cz);
                 let zero = Vector3::zeros();
-                let Some((v, w, (dy, dz))) = plastic_face_impact(
+                let Some(([v, w], [dy, dz])) = plastic_face_impact(
                     (&x1, &h1, m1, [v1, w1]),
                     (&x2, &h2, mass2, [v2, zero]),
                     &c,
