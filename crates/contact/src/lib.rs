@@ -65,6 +65,7 @@ mod contact;
 mod error;
 pub mod face;
 mod frame;
+pub mod grip;
 mod impulse;
 mod jacobian;
 mod material;

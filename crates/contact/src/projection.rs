@@ -4,6 +4,7 @@ use tatami_lcp::{LinearSet, Projection, RowBound};
 
 use crate::PointFriction;
 use crate::face::FaceProjection;
+use crate::grip::GripProjection;
 use crate::patch::PatchProjection;
 use crate::segment::SegmentProjection;
 
@@ -18,6 +19,9 @@ pub enum ContactProjection {
     Face(FaceProjection),
     /// A face-model contact on a segment: rows f3, f1, f2, τu, τ3 ([`crate::segment`]).
     Segment(SegmentProjection),
+    /// The friction of a contact pressed in by a body that cannot give way, beside the
+    /// model's blocks: rows f1, f2 and maybe τ3 ([`crate::grip`]).
+    Grip(GripProjection),
 }
 
 impl Projection for ContactProjection {
@@ -28,6 +32,7 @@ impl Projection for ContactProjection {
             Self::Patch(p) => p.project(impulses, changed),
             Self::Face(p) => p.project(impulses, changed),
             Self::Segment(p) => p.project(impulses, changed),
+            Self::Grip(p) => p.project(impulses, changed),
         }
     }
 
@@ -38,6 +43,7 @@ impl Projection for ContactProjection {
             Self::Patch(p) => p.tangent_pair(),
             Self::Face(p) => p.tangent_pair(),
             Self::Segment(p) => p.tangent_pair(),
+            Self::Grip(p) => p.tangent_pair(),
         }
     }
 
@@ -48,6 +54,7 @@ impl Projection for ContactProjection {
             Self::Patch(p) => p.leading_normal_rows(),
             Self::Face(p) => p.leading_normal_rows(),
             Self::Segment(p) => p.leading_normal_rows(),
+            Self::Grip(p) => p.leading_normal_rows(),
         }
     }
 
@@ -56,7 +63,7 @@ impl Projection for ContactProjection {
         match self {
             Self::Face(p) => p.whole_block(),
             Self::Segment(p) => p.whole_block(),
-            Self::Point(_) | Self::Patch(_) => false,
+            Self::Point(_) | Self::Patch(_) | Self::Grip(_) => false,
         }
     }
 
@@ -65,7 +72,7 @@ impl Projection for ContactProjection {
         match self {
             Self::Face(p) => p.admissible(impulses),
             Self::Segment(p) => p.admissible(impulses),
-            Self::Point(_) | Self::Patch(_) => false,
+            Self::Point(_) | Self::Patch(_) | Self::Grip(_) => false,
         }
     }
 
@@ -75,6 +82,7 @@ impl Projection for ContactProjection {
             Self::Patch(p) => p.bound(row),
             Self::Face(p) => p.bound(row),
             Self::Segment(p) => p.bound(row),
+            Self::Grip(p) => p.bound(row),
         }
     }
 
@@ -84,6 +92,7 @@ impl Projection for ContactProjection {
             Self::Patch(p) => p.linear_set(rows),
             Self::Face(p) => p.linear_set(rows),
             Self::Segment(p) => p.linear_set(rows),
+            Self::Grip(p) => p.linear_set(rows),
         }
     }
 }

@@ -33,10 +33,25 @@ impl FrictionCone {
     /// impulse that `earn` carries (generator, rate `μ`): the box as two symmetric budgets, the
     /// circle as its inscribed polygon of [`Self::DIRECT_FACETS`] generators spending one.
     pub fn add_to(self, set: &mut LinearSet, first: usize, earn: &[(usize, f64)]) {
+        self.add_budgeted(set, first, earn, 0.0);
+    }
+
+    /// Adds the friction of tangent rows `first`, `first + 1` to `set`, bounded by the fixed
+    /// `limit` (a [`crate::grip`]'s `μ p`), as [`add_to`](Self::add_to) does by a normal impulse.
+    pub fn add_limited_to(self, set: &mut LinearSet, first: usize, limit: f64) {
+        self.add_budgeted(set, first, &[], limit);
+    }
+
+    /// The budgets of [`add_to`](Self::add_to) earning `earn` on top of `constant`.
+    fn add_budgeted(self, set: &mut LinearSet, first: usize, earn: &[(usize, f64)], constant: f64) {
         match self {
             Self::Box => {
-                set.symmetric(first, earn.to_vec());
-                set.symmetric(first + 1, earn.to_vec());
+                for row in [first, first + 1] {
+                    set.symmetric(row, earn.to_vec());
+                    if let Some(budget) = set.budgets.last_mut() {
+                        budget.constant = constant;
+                    }
+                }
             }
             Self::Circle => {
                 let spend = (0..Self::DIRECT_FACETS)
@@ -48,7 +63,7 @@ impl FrictionCone {
                 set.budgets.push(Budget {
                     spend,
                     earn: earn.to_vec(),
-                    constant: 0.0,
+                    constant,
                 });
             }
         }

@@ -30,6 +30,30 @@ impl Jacobian {
         )
     }
 
+    /// `J M⁻¹ Jᵀ`: how fast the row's `w` changes per unit impulse on it (the inverse of its
+    /// effective mass; 0 between bodies no impulse moves).
+    ///
+    /// ```
+    /// use nalgebra::{Matrix3, Vector3};
+    /// use tatami_lcp::{Jacobian, SolverBody};
+    /// let mut a = SolverBody::fixed();
+    /// a.inv_mass = 0.5;
+    /// a.inv_inertia_world = Matrix3::identity() * 2.0;
+    /// // Along z at 1 m beside A's centre: 1/m plus (r × n)ᵀ I⁻¹ (r × n).
+    /// let j = Jacobian {
+    ///     linear_a: Vector3::z(),
+    ///     angular_a: Vector3::x().cross(&Vector3::z()),
+    ///     ..Jacobian::default()
+    /// };
+    /// assert_eq!(j.inverse_mass(&a, &SolverBody::fixed()), 0.5 + 2.0);
+    /// ```
+    pub fn inverse_mass(&self, a: &SolverBody, b: &SolverBody) -> f64 {
+        a.inv_mass * self.linear_a.norm_squared()
+            + self.angular_a.dot(&(a.inv_inertia_world * self.angular_a))
+            + b.inv_mass * self.linear_b.norm_squared()
+            + self.angular_b.dot(&(b.inv_inertia_world * self.angular_b))
+    }
+
     /// `w = J v` for A's and B's `[linear, angular]` velocities.
     #[inline]
     pub(crate) fn velocity_of(&self, a: [&Vector3<f64>; 2], b: [&Vector3<f64>; 2]) -> f64 {

@@ -585,8 +585,10 @@ impl ContactSet {
                     Solved::Rows(*solved_with, start..next.len())
                 }
                 (last, _) if rows.is_empty() => last.clone(),
+                // The pair's own blocks: a grip's friction ([`tatami_contact::grip`]) is found
+                // afresh each step with the press that bounds it, not carried into the face.
                 (_, ContactModel::Face) => Solved::Face(ContactImpulse::of_rows(
-                    &problem.rows[rows],
+                    &problem.rows[rows_of(problem, &without_grip(problem, &state.blocks))],
                     entry.contact.centre_a,
                 )),
                 (_, ContactModel::Vertex | ContactModel::Patch) => {
@@ -709,6 +711,15 @@ pub(crate) fn rows_of<P>(problem: &Problem<P>, blocks: &Range<usize>) -> Range<u
     let first = &problem.blocks[blocks.start];
     let last = &problem.blocks[blocks.end - 1];
     first.rows.start..last.rows.end
+}
+
+/// `blocks` less the grip that may end them ([`tatami_contact::grip::build`]).
+fn without_grip(problem: &Problem<ContactProjection>, blocks: &Range<usize>) -> Range<usize> {
+    let gripped = blocks
+        .clone()
+        .last()
+        .is_some_and(|last| matches!(problem.blocks[last].projection, ContactProjection::Grip(_)));
+    blocks.start..blocks.end - usize::from(gripped)
 }
 
 /// The keys of a contact's `rows` rows under `model`, for support vertices with `features`.

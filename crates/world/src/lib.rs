@@ -34,6 +34,7 @@ mod impact;
 mod load_estimate;
 mod parallel;
 mod parry_bridge;
+mod press;
 mod rewind;
 mod rotation;
 mod sat;

@@ -4,7 +4,7 @@ use std::ops::Range;
 use std::time::Instant;
 
 use nalgebra::Vector3;
-use tatami_contact::{Contact, ContactModel, ContactProjection};
+use tatami_contact::{Contact, ContactModel, ContactProjection, grip};
 use tatami_lcp::direct::{self, DirectInfo};
 use tatami_lcp::pgs::{self, PgsParams, PgsWorkspace, Record, Support, WarmStart};
 use tatami_lcp::{DisjointSets, LcpError, Problem, Row, SolverBody};
@@ -15,6 +15,7 @@ use crate::contact_set::ContactSet;
 use crate::impact::Impacts;
 use crate::parallel;
 use crate::parry_bridge::Collider;
+use crate::press::Presses;
 use crate::rewind::{RewindWorkspace, StepMotion};
 use crate::sleep::Islands;
 use crate::support::Outline;
@@ -48,6 +49,8 @@ pub struct World {
     pub(crate) problem: Problem<ContactProjection>,
     /// The part of each row's penetration push left to the position pass (split impulses).
     biases: Vec<f64>,
+    /// The contacts kinematic bodies press in beyond the slop, for their grips.
+    presses: Presses,
     /// Scratch: each moving body's state after the step, checked before it is committed.
     motions: Vec<(usize, Motion)>,
     /// Scratch of the pass that puts back fast pairs driven deep into each other.
@@ -92,6 +95,7 @@ impl World {
             contact_set: ContactSet::default(),
             problem: Problem::default(),
             biases: Vec::new(),
+            presses: Presses::default(),
             pseudo_velocities: Vec::new(),
             motions: Vec::new(),
             rewind: RewindWorkspace::default(),
@@ -364,6 +368,7 @@ impl World {
         problem.blocks.clear();
         self.biases.clear();
         let contact_settings = self.settings.contact;
+        (self.presses).find(&self.bodies, self.contact_set.contacts(), &contact_settings);
         let pairs = self.contact_set.contacts().len();
         let model = self.settings.model;
         for index in 0..pairs {
@@ -395,6 +400,17 @@ impl World {
                         pair: pair_name(&self.bodies, contact),
                         source,
                     })?;
+                let press = self.presses.share(index);
+                if press > 0.0 {
+                    grip::build(
+                        contact,
+                        press,
+                        dt,
+                        &contact_settings,
+                        problem,
+                        &mut self.biases,
+                    );
+                }
             }
             self.contact_set
                 .set_blocks(index, first..problem.blocks.len());
