@@ -17,6 +17,11 @@
 //!   the vertices a support tipping about its centre would sink,
 //!   get a point's 3 rows each, which let them close their gap within the step and no more.
 //!
+//! Beside any model's blocks, a [`grip`] bears the friction of a contact that a body which
+//! cannot give way (a kinematic body) presses in beyond the slop: the world adds one where a
+//! gripper's fingers squeeze a body, which split impulses would otherwise leave without a
+//! normal force to grip with.
+//!
 //! Friction rows target no slip; where a face rests on a face and the two bodies turn together
 //! (a box on a turntable), they target the relative velocity that keeps the faces' material
 //! points together over the step, which semi-implicit Euler's straight-line moves of the

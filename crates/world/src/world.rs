@@ -327,7 +327,18 @@ impl World {
 
     /// Collision: the contact set brought to the current positions for a step of `dt`,
     /// highest contact first.
+    ///
+    /// A kinematic body sent to a target first gets the velocity that takes it there in the
+    /// step, so its contacts are found over the step as any moving body's, speculatively: at
+    /// rest until then, a bat sent 0.5 m a step (30 m/s at 60 Hz) at a 0.2 m cube was seen
+    /// only once inside it, and passed through it under the vertex and patch models.
     fn detect(&mut self, dt: f64) {
+        for body in &mut self.bodies {
+            if let (BodyKind::Kinematic, Some((centre, rotation))) = (body.kind(), body.target) {
+                body.linear_velocity = (centre - body.centre) / dt;
+                body.angular_velocity = (rotation * body.rotation.inverse()).scaled_axis() / dt;
+            }
+        }
         let collision = CollisionSettings::of(&self.settings);
         collision::detect(
             &self.bodies,
@@ -415,7 +426,7 @@ impl World {
             self.contact_set
                 .set_blocks(index, first..problem.blocks.len());
         }
-        // Gravity's impulse and the applied forces'; a kinematic body's target sets its velocity.
+        // Gravity's impulse and the applied forces'.
         for (solver_body, body) in problem.bodies.iter_mut().zip(&self.bodies) {
             match body.kind() {
                 BodyKind::Dynamic if body.asleep => {}
@@ -424,14 +435,8 @@ impl World {
                     solver_body.angular_velocity +=
                         solver_body.inv_inertia_world * body.torque * dt;
                 }
-                BodyKind::Kinematic => {
-                    if let Some((centre, rotation)) = body.target {
-                        solver_body.linear_velocity = (centre - body.centre) / dt;
-                        solver_body.angular_velocity =
-                            (rotation * body.rotation.inverse()).scaled_axis() / dt;
-                    }
-                }
-                BodyKind::Fixed => {}
+                // A kinematic body moves at its own velocity, its target's since collision.
+                BodyKind::Kinematic | BodyKind::Fixed => {}
             }
         }
         Ok(())

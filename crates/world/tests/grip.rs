@@ -122,8 +122,8 @@ fn a_squeezed_cube_slides_at_the_grip_closed_form_rate_and_holds_above_it() {
 /// move by up to the overlap beyond the slop (the position pass shifts a squeezed body towards
 /// one finger, the `press` module docs). The vertex and patch models, and the direct solver,
 /// hold it too, less exactly: their contacts carry normal forces the squeeze leaves undetermined
-/// and tilt it (measured 17 and 54 mm down under the vertex and patch models, 21 mm off and
-/// 0.095 rad turned with the direct solver); bound 10 cm and 0.25 rad, where without grips the
+/// and tilt it (measured 17 and 54 mm down under the vertex and patch models, 19 mm off and
+/// 0.10 rad turned with the direct solver); bound 10 cm and 0.25 rad, where without grips the
 /// cube fell 30 m.
 #[test]
 fn a_cube_squeezed_between_kinematic_fingers_is_lifted_and_carried() {
