@@ -5,14 +5,17 @@
 //! force that takes: a gripper's finger, a VR hand. Between other bodies an overlap is an error
 //! the position pass undoes, not a press, and gets no grip.
 //!
-//! A body squeezed between such bodies cannot leave the overlap, only move it: the position
-//! pass, pushing from both sides at once, ends each step with the push of the contact it
-//! updated last and shifts the body towards the other, until the last contact is within the
-//! slop and the other holds the whole overlap (8 mm of a cube squeezed 1 cm on each side). So
-//! a contact's press is the mean of its own excess and those of the body's pressed contacts
-//! that push it the other way: the squeeze is one, however the pass has shared it out, and
-//! each side grips alike. Measured each side on its own, the shifted cube gripped on one side
-//! alone, turned, and wedged between fingers that could not hold it.
+//! A body squeezed between such bodies cannot leave the overlap, only move it. The position
+//! pass, pushing it out from both sides at once, ended each step with the push of the contact
+//! it updated last, and shifted the body towards the other finger until the last contact was
+//! within the slop: a cube squeezed by 1 cm a side went 8 mm off centre, its other finger
+//! holding the whole overlap, and under the vertex and patch models, whose corners took up
+//! the unbalanced pushes, it crept down the fingers at 6 and 20 mm/s. So a contact pressed
+//! beyond the slop while another pushes its body the other way, also beyond it, is
+//! *squeezed*: the position pass leaves it be (its pushes are zero), and the cube stays where
+//! the fingers hold it, to 2–4 µm under every model. And a contact's press is the mean of its
+//! own excess and those of the body's pressed contacts that push it the other way, so the
+//! sides of one squeeze grip alike however the overlap is shared between them.
 
 use nalgebra::Vector3;
 use tatami_contact::{Contact, ContactSettings, grip};
@@ -35,6 +38,9 @@ pub(crate) struct Presses {
     pressed: Vec<Pressed>,
     /// Per contact of the set, the press its grip bears (m beyond the slop); 0 for none.
     shares: Vec<f64>,
+    /// Per contact of the set, whether it and another pushing its body the other way are both
+    /// pressed in beyond the slop.
+    squeezed: Vec<bool>,
 }
 
 impl Presses {
@@ -48,6 +54,8 @@ impl Presses {
     ) {
         self.shares.clear();
         self.shares.resize(contacts.len(), 0.0);
+        self.squeezed.clear();
+        self.squeezed.resize(contacts.len(), false);
         self.pressed.clear();
         for (index, contact) in contacts.enumerate() {
             let (a, b) = (&bodies[contact.body_a.0], &bodies[contact.body_b.0]);
@@ -78,6 +86,10 @@ impl Presses {
                         (sum + other.excess, count + 1.0)
                     });
                 self.shares[own.contact] = sum / count;
+                self.squeezed[own.contact] = own.excess > 0.0
+                    && run
+                        .iter()
+                        .any(|other| other.push.dot(&own.push) < 0.0 && other.excess > 0.0);
             }
         }
     }
@@ -86,5 +98,11 @@ impl Presses {
     /// body presses it.
     pub(crate) fn share(&self, index: usize) -> f64 {
         self.shares.get(index).copied().unwrap_or(0.0)
+    }
+
+    /// Whether the contact at `index` squeezes its body against another pressed contact: the
+    /// position pass, which could only shift the body between them, leaves it be.
+    pub(crate) fn squeezed(&self, index: usize) -> bool {
+        self.squeezed.get(index).copied().unwrap_or(false)
     }
 }

@@ -384,6 +384,7 @@ impl World {
         let model = self.settings.model;
         for index in 0..pairs {
             let first = problem.blocks.len();
+            let first_row = problem.rows.len();
             let awake = self.contact_set.get(index).is_some_and(|(contact, _)| {
                 !self.bodies[contact.body_a.0].asleep && !self.bodies[contact.body_b.0].asleep
             });
@@ -421,6 +422,9 @@ impl World {
                         problem,
                         &mut self.biases,
                     );
+                }
+                if self.presses.squeezed(index) {
+                    self.biases[first_row..].fill(0.0);
                 }
             }
             self.contact_set

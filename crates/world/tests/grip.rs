@@ -117,14 +117,12 @@ fn a_squeezed_cube_slides_at_the_grip_closed_form_rate_and_holds_above_it() {
 
 /// The fingers close on a cube 4 cm below their centres (the cube hangs off them, so the
 /// grips' twist holds it too), rest half a second, lift it 18 cm at 0.3 m/s and carry it 30 cm
-/// sideways. Under the face model, the default, the cube follows across the squeeze to within
-/// 0.1 mm and turns by under 0.1 mrad (measured 0.9 µm and 1 µrad); along the squeeze it may
-/// move by up to the overlap beyond the slop (the position pass shifts a squeezed body towards
-/// one finger, the `press` module docs). The vertex and patch models, and the direct solver,
-/// hold it too, less exactly: their contacts carry normal forces the squeeze leaves undetermined
-/// and tilt it (measured 17 and 54 mm down under the vertex and patch models, 19 mm off and
-/// 0.10 rad turned with the direct solver); bound 10 cm and 0.25 rad, where without grips the
-/// cube fell 30 m.
+/// sideways. The cube follows their path to within 0.1 mm, along the squeeze and across it,
+/// and turns by under 0.1 mrad, under every model (measured 0.9–4 µm and 9–18 µrad; the solve
+/// stops at 0.1 mm/s a row); with the direct solver under the face model to within 1 mm
+/// (measured 0.18 mm: its friction is a 16-sided polygon's). Before grips the cube fell 30 m;
+/// before squeezed contacts were left out of the position pass, it was shifted 8 mm towards
+/// one finger, and under the vertex and patch models crept 17 and 54 mm down the fingers.
 #[test]
 fn a_cube_squeezed_between_kinematic_fingers_is_lifted_and_carried() {
     let grasp = Grasp {
@@ -172,18 +170,10 @@ fn a_cube_squeezed_between_kinematic_fingers_is_lifted_and_carried() {
             turned = turned.max((cube.rotation() * grasp.turn.inverse()).angle());
         }
         let case = format!("{} model, {solver}", model.name());
-        if model == ContactModel::Face && solver == "PGS" {
-            assert!(off < 1e-4, "{case}: {off} m off the fingers' path");
-            assert!(turned < 1e-4, "{case}: turned by {turned} rad");
-            let shift = grasp.squeeze - DEFAULT_SLOP;
-            assert!(
-                along < shift + 1e-4,
-                "{case}: {along} m along the squeeze, more than its {shift} m"
-            );
-        } else {
-            assert!(off < 0.1, "{case}: {off} m off the fingers' path");
-            assert!(turned < 0.25, "{case}: turned by {turned} rad");
-        }
+        let bound = if solver == "PGS" { 1e-4 } else { 1e-3 };
+        assert!(off < bound, "{case}: {off} m off the fingers' path");
+        assert!(along < bound, "{case}: {along} m off it along the squeeze");
+        assert!(turned < 1e-4, "{case}: turned by {turned} rad");
     }
 }
 
@@ -219,7 +209,7 @@ fn only_an_overlap_beyond_the_slop_grips() {
 /// 3 m/s: the cube leaves with the velocity they had, then flies free. Ten steps after the
 /// last step the grips held it (the fingers open within one step, from contacts found at its
 /// start), its velocity is the fingers' less ten steps of gravity, under every model, to
-/// 0.1 mm/s, the solve's stopping tolerance (measured 0.16, 0.54 and 0.26 µm/s under the
+/// 0.1 mm/s, the solve's stopping tolerance (measured 0.04, 0.04 and 0.26 µm/s under the
 /// vertex, patch and face models).
 #[test]
 fn a_cube_let_go_flies_on_at_the_fingers_velocity() {
