@@ -2,8 +2,10 @@
 //! grips bear ([`tatami_contact::grip`]).
 //!
 //! A body driven by position, which no impulse moves, presses what it overlaps with whatever
-//! force that takes: a gripper's finger, a VR hand. Between other bodies an overlap is an error
-//! the position pass undoes, not a press, and gets no grip.
+//! force that takes: a gripper's finger, a VR hand. It presses the body against whatever
+//! cannot give way either, another finger or a fixed wall or floor, and those contacts grip
+//! too. Between other bodies an overlap is an error the position pass undoes, not a press,
+//! and gets no grip: a body wedged between fixed bodies alone is left to the position pass.
 //!
 //! A body squeezed between such bodies cannot leave the overlap, only move it. The position
 //! pass, pushing it out from both sides at once, ended each step with the push of the contact
@@ -13,22 +15,25 @@
 //! the unbalanced pushes, it crept down the fingers at 6 and 20 mm/s. So a contact pressed
 //! beyond the slop while another pushes its body the other way, also beyond it, is
 //! *squeezed*: the position pass leaves it be (its pushes are zero), and the cube stays where
-//! the fingers hold it, to 2–4 µm under every model. And a contact's press is the mean of its
-//! own excess and those of the body's pressed contacts that push it the other way, so the
-//! sides of one squeeze grip alike however the overlap is shared between them.
+//! the fingers hold it, to 2–4 µm under every model, or where a finger holds it against a
+//! wall. And a contact's press is the mean of its own excess and those of the body's pressed
+//! contacts that push it the other way, so the sides of one squeeze grip alike however the
+//! overlap is shared between them.
 
 use nalgebra::Vector3;
 use tatami_contact::{Contact, ContactSettings, grip};
 
 use crate::Body;
 
-/// One contact a kinematic body presses: the dynamic body it presses, the direction it pushes
-/// that body, the contact's own excess beyond the slop, and its index in the contact set.
+/// A contact of a dynamic body with one that cannot give way: the dynamic body, the direction
+/// the contact pushes it, the contact's own excess beyond the slop, whether the other body is
+/// kinematic (driven), and the contact's index in the contact set.
 #[derive(Debug, Clone, Copy)]
 struct Pressed {
     body: usize,
     push: Vector3<f64>,
     excess: f64,
+    driven: bool,
     contact: usize,
 }
 
@@ -44,8 +49,9 @@ pub(crate) struct Presses {
 }
 
 impl Presses {
-    /// Finds the pressed contacts among `contacts` (the contact set's, in its order) between a
-    /// kinematic body and an awake dynamic one, and each one's share of its body's squeeze.
+    /// Finds, among `contacts` (the contact set's, in its order), those of awake dynamic bodies
+    /// that a kinematic body presses in beyond the slop with bodies that cannot give way
+    /// (kinematic or fixed), and each one's share of its body's squeeze.
     pub(crate) fn find<'a>(
         &mut self,
         bodies: &[Body],
@@ -59,29 +65,47 @@ impl Presses {
         self.pressed.clear();
         for (index, contact) in contacts.enumerate() {
             let (a, b) = (&bodies[contact.body_a.0], &bodies[contact.body_b.0]);
+            let awake = |body: &Body| body.is_dynamic() && !body.asleep;
             // Body A is pushed along the normal, B against it.
-            let (body, push) = match (a.is_kinematic(), b.is_kinematic()) {
-                (false, true) if a.is_dynamic() && !a.asleep => {
-                    (contact.body_a.0, contact.frame.normal)
-                }
-                (true, false) if b.is_dynamic() && !b.asleep => {
-                    (contact.body_b.0, -contact.frame.normal)
-                }
+            let (body, push, by) = match (awake(a), awake(b)) {
+                (true, false) if !b.is_dynamic() => (contact.body_a.0, contact.frame.normal, b),
+                (false, true) if !a.is_dynamic() => (contact.body_b.0, -contact.frame.normal, a),
                 _ => continue,
             };
             self.pressed.push(Pressed {
                 body,
                 push,
                 excess: grip::excess(contact, settings),
+                driven: by.is_kinematic(),
                 contact: index,
             });
         }
+        // Most steps of most worlds: no kinematic body presses anything.
+        if !self.pressed.iter().any(|p| p.driven && p.excess > 0.0) {
+            return;
+        }
         self.pressed.sort_by_key(|p| p.body);
+        let against = |own: &Pressed, other: &Pressed| other.push.dot(&own.push) < 0.0;
         for run in self.pressed.chunk_by(|p, q| p.body == q.body) {
+            // Only a body a kinematic body presses in beyond the slop.
+            if !run.iter().any(|p| p.driven && p.excess > 0.0) {
+                continue;
+            }
             for own in run {
+                // Its contacts with kinematic bodies, and those with fixed bodies that a
+                // kinematic body presses it into: a body wedged between fixed ones is left to
+                // the position pass, and the floor under a body a paddle pushes along is not
+                // pressed by the paddle.
+                let pressed = own.driven
+                    || run
+                        .iter()
+                        .any(|other| other.driven && other.excess > 0.0 && against(own, other));
+                if !pressed {
+                    continue;
+                }
                 let (sum, count) = run
                     .iter()
-                    .filter(|other| other.contact == own.contact || other.push.dot(&own.push) < 0.0)
+                    .filter(|other| other.contact == own.contact || against(own, other))
                     .fold((0.0, 0.0), |(sum, count), other| {
                         (sum + other.excess, count + 1.0)
                     });
@@ -89,7 +113,7 @@ impl Presses {
                 self.squeezed[own.contact] = own.excess > 0.0
                     && run
                         .iter()
-                        .any(|other| other.push.dot(&own.push) < 0.0 && other.excess > 0.0);
+                        .any(|other| against(own, other) && other.excess > 0.0);
             }
         }
     }
