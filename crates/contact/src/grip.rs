@@ -62,6 +62,9 @@ use crate::{Contact, ContactProjection, ContactSettings, FrictionCone};
 /// from the settings), then, if the block has it, a twist within `±twist`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GripProjection {
+    /// `p` (N s): the press, the impulse the overlap beyond the slop presses with over the
+    /// step, along the normal at the support's centroid.
+    pub press: f64,
     /// `μ p` (N s): the most friction impulse the grip bears.
     pub friction: f64,
     /// `μ r̄ p` (N m s): the most twist impulse it bears.
@@ -187,6 +190,7 @@ pub fn build(
         body_b: contact.body_b,
         rows: start..start + rows,
         projection: ContactProjection::Grip(GripProjection {
+            press,
             friction: mu * press,
             twist: mu * twist_radius * press,
             cone: settings.friction_cone,
@@ -206,6 +210,7 @@ mod tests {
     fn the_linear_set_and_the_projection_bound_alike() {
         for cone in [FrictionCone::Box, FrictionCone::Circle] {
             let mut grip = GripProjection {
+                press: 0.6,
                 friction: 0.3,
                 twist: 0.02,
                 cone,

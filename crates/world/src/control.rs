@@ -6,6 +6,7 @@
 //! act over the next step only; impulses and velocities take effect at once.
 
 use nalgebra::{Point3, UnitQuaternion, Vector3};
+use tatami_contact::grip::GripProjection;
 
 use crate::body::BodyKind;
 use crate::contact_set::rows_of;
@@ -253,9 +254,12 @@ impl World {
                 self.bodies.get(contact.body_a.0)?.id(),
                 self.bodies.get(contact.body_b.0)?.id(),
             ];
+            let press = (self.problem.blocks.get(blocks)?.iter())
+                .find_map(|block| GripProjection::of(&block.projection))
+                .map_or(0.0, |grip| grip.press);
             Some(ContactWrench::new(
                 contact,
-                self.problem.rows.get(rows)?,
+                (self.problem.rows.get(rows)?, press),
                 dt,
                 ids,
             ))

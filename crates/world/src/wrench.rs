@@ -48,7 +48,8 @@ pub struct ContactWrench {
     pub torque: Vector3<f64>,
     /// Where the normal force acts (world); the support polygon's origin when it is zero.
     pub centre_of_pressure: Point3<f64>,
-    /// `force · normal` (N), ≥ 0.
+    /// `force · normal` (N), ≥ 0; with a grip's press (the force a kinematic body's overlap
+    /// presses with, [`tatami_contact::grip`]) added to the rows'.
     pub normal_force: f64,
     /// `force` along the two tangents (N).
     pub friction_force: [f64; 2],
@@ -59,13 +60,23 @@ pub struct ContactWrench {
 }
 
 impl ContactWrench {
-    /// The wrench of `contact` whose rows, solved over a step of `dt`, are `rows`.
-    pub(crate) fn new(contact: &Contact, rows: &[Row], dt: f64, ids: [BodyId; 2]) -> Self {
+    /// The wrench of `contact` whose rows, solved over a step of `dt`, are `rows`, with the
+    /// `press` (N s) of its grip, if it has one ([`tatami_contact::grip`]): the impulse along
+    /// the normal at the support's centroid that a kinematic body's overlap presses with.
+    pub(crate) fn new(
+        contact: &Contact,
+        (rows, press): (&[Row], f64),
+        dt: f64,
+        ids: [BodyId; 2],
+    ) -> Self {
         let frame = &contact.frame;
         let impulse = ContactImpulse::of_rows(rows, contact.centre_a);
-        let force = impulse.linear / dt;
+        let pressed = frame.normal * press;
+        let centroid = frame.to_world(&contact.support.centroid());
+        let force = (impulse.linear + pressed) / dt;
         // About the frame origin rather than A's centre of mass.
-        let torque_origin = impulse.angular / dt + (contact.centre_a - frame.origin).cross(&force);
+        let torque_origin = (impulse.angular + (centroid - contact.centre_a).cross(&pressed)) / dt
+            + (contact.centre_a - frame.origin).cross(&force);
         let n = frame.normal;
         let normal_force = force.dot(&n);
         let offset = if normal_force > 0.0 {

@@ -307,3 +307,46 @@ fn a_finger_pressing_a_cube_against_a_fixed_wall_holds_it() {
         }
     }
 }
+
+/// The force-sensor read-out of a held cube (`World::contact_wrenches`): each finger presses it
+/// with its grip's press, `p/dt = m (d − slop)/dt²` along the normal, and holds half its weight
+/// by friction, to 1e-6 of each (the press is read to 1e-15; the friction is the solve's).
+#[test]
+fn each_finger_reads_its_press_and_half_the_weight() {
+    let grasp = Grasp {
+        turn: rotation([0.0, 0.0, 1.0], 61.0),
+        centre: Point3::new(0.1, 0.0, 1.0),
+        squeeze: 0.009,
+        above: 0.0,
+        height: 0.3,
+        mass: 1.5,
+        mu: 0.7,
+    };
+    let dt = 1.0 / 60.0;
+    let mut world = grasp.world(WorldSettings::default());
+    for _ in 0..30 {
+        world.step(dt).expect("steps");
+    }
+    let press = grasp.mass * (grasp.squeeze - DEFAULT_SLOP) / (dt * dt);
+    let weight = grasp.mass * G;
+    let wrenches: Vec<_> = world.contact_wrenches().collect();
+    assert_eq!(wrenches.len(), 2, "one contact a finger");
+    for wrench in wrenches {
+        assert!(
+            (wrench.normal_force / press - 1.0).abs() < 1e-6,
+            "normal force {} N, press {press} N",
+            wrench.normal_force
+        );
+        // The force on the cube (A or B of the contact) holds up half its weight.
+        let up = wrench.force.z
+            * if wrench.body_a == world.bodies()[2].id() {
+                1.0
+            } else {
+                -1.0
+            };
+        assert!(
+            (up / (weight / 2.0) - 1.0).abs() < 1e-6,
+            "holds up {up} N of {weight} N"
+        );
+    }
+}
