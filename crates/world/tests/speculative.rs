@@ -320,6 +320,58 @@ fn a_bat_sent_by_kinematic_targets_pushes_what_it_reaches() {
     }
 }
 
+/// A ball or a cube thrown at 3 m/s at a kinematic paddle moving along its normal at −1 to
+/// 2 m/s (a bat, a juggler's hand), turned off the axes, without gravity: it leaves at
+/// Newton's speed in the paddle's frame, `u − e (v − u)`, under every model, to 0.1 mm/s (the
+/// solve's tolerance; measured 7 µm/s at most, the vertex model's cube). The bounce is capped
+/// by the energy the impact took, which against a body no impulse moves depends on the frame:
+/// counted at rest, a paddle moving into the ball at 2 m/s sent it back 15% slow.
+#[test]
+fn a_body_bounced_off_a_moving_kinematic_paddle_leaves_at_newtons_speed_in_its_frame() {
+    let tilt = rotation([1.0, 2.0, 0.0], 23.0);
+    let n = tilt * Vector3::z();
+    let approach = -3.0;
+    for model in ContactModel::ALL {
+        for (paddle, restitution) in [(0.0, 0.8), (1.0, 0.8), (2.0, 0.5), (-1.0, 0.8), (1.5, 1.0)] {
+            for (name, shape) in [
+                ("ball", Shape::sphere(0.1)),
+                ("cube", Shape::cuboid([0.2; 3])),
+            ] {
+                let mut world = World::builder()
+                    .model(model)
+                    .gravity([0.0; 3])
+                    .body(
+                        BodyDesc::kinematic(Shape::cuboid([1.0, 1.0, 0.1]))
+                            .rotation(tilt)
+                            .velocity((n * paddle).into())
+                            .restitution(restitution),
+                    )
+                    .body(
+                        BodyDesc::dynamic(shape)
+                            .mass(0.3)
+                            .rotation(tilt)
+                            .position((n * 0.6).into())
+                            .velocity((n * approach).into())
+                            .restitution(restitution),
+                    )
+                    .build()
+                    .expect("a valid scene");
+                for _ in 0..60 {
+                    world.step(DT).expect("steps");
+                }
+                let left = world.bodies()[1].linear_velocity().dot(&n);
+                let newton = paddle - restitution * (approach - paddle);
+                assert!(
+                    (left - newton).abs() < 1e-4,
+                    "{} model, {name}, paddle at {paddle} m/s, e = {restitution}: left at {left} \
+                     m/s, Newton's {newton}",
+                    model.name()
+                );
+            }
+        }
+    }
+}
+
 /// A ball with restitution 0.8 dropped 1 m at 60, 240 and 1000 Hz: its contact lands it on the
 /// floor from the gap, and the next step bounces it at `e` times the speed it met the floor at
 /// (the integrator's: tatami-world's `impact` module), so it rises to `e² h` within 0.1%
