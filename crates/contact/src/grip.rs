@@ -55,7 +55,7 @@
 
 use tatami_lcp::{Block, LinearSet, Problem, Projection, Row, RowBound};
 
-use crate::jacobian::{angular_jacobian, point_jacobian, point_motion};
+use crate::jacobian::{angular_jacobian, block_friction_motion, point_jacobian};
 use crate::{Contact, ContactProjection, ContactSettings, FrictionCone};
 
 /// The projection of a grip's rows: friction `[f1, f2]` within `friction` (the cone's shape
@@ -165,23 +165,38 @@ pub fn build(
         return false;
     }
     let press = excess / (inverse_mass * dt);
-    let (_, slip) = point_motion(contact, &problem.bodies, &centroid);
+    // As the model's own friction rows: on a face, the relative velocity that keeps the two
+    // bodies' points together over the step while they turn together (a hand turning what
+    // it holds), else no slip.
+    let (_, slip, weld) = block_friction_motion(
+        contact,
+        &problem.bodies,
+        &centroid,
+        dt,
+        settings.slip_threshold,
+    );
     let mu = contact.material.friction(slip, settings.slip_threshold);
     let twist_radius = contact.support.centroid_mean_distance();
     let start = problem.rows.len();
     let mut directions = vec![
-        point_jacobian(contact, &centroid, &frame.tangent1),
-        point_jacobian(contact, &centroid, &frame.tangent2),
+        (
+            point_jacobian(contact, &centroid, &frame.tangent1),
+            weld.dot(&frame.tangent1),
+        ),
+        (
+            point_jacobian(contact, &centroid, &frame.tangent2),
+            weld.dot(&frame.tangent2),
+        ),
     ];
     if twist_radius > 0.0 {
-        directions.push(angular_jacobian(&frame.normal));
+        directions.push((angular_jacobian(&frame.normal), 0.0));
     }
     let rows = directions.len();
     problem
         .rows
-        .extend(directions.into_iter().map(|jacobian| Row {
+        .extend(directions.into_iter().map(|(jacobian, target)| Row {
             jacobian,
-            target: 0.0,
+            target,
             impulse: 0.0,
         }));
     biases.extend(std::iter::repeat_n(0.0, rows));

@@ -350,3 +350,49 @@ fn each_finger_reads_its_press_and_half_the_weight() {
         );
     }
 }
+
+/// The fingers turn the cube they hold about the squeeze's axis at 1 rad/s for a second and a
+/// half (a wrist turning what the hand holds): the grips' twist rows (`μ r̄ p`) turn it with
+/// them, its centre kept, to 0.1 mm and 0.1 mrad under every model (measured 5 µm and 17
+/// µrad at most).
+#[test]
+fn a_held_cube_turns_with_the_fingers_about_the_squeeze() {
+    let grasp = Grasp {
+        turn: rotation([0.0, 0.0, 1.0], 23.0),
+        centre: Point3::new(0.0, 0.3, 1.0),
+        squeeze: 0.01,
+        above: 0.0,
+        height: 0.3,
+        mass: 0.5,
+        mu: 0.8,
+    };
+    let axis = nalgebra::Unit::new_normalize(grasp.across());
+    for model in ContactModel::ALL {
+        let mut world = grasp.world(WorldSettings {
+            model,
+            ..WorldSettings::default()
+        });
+        let ids: Vec<_> = world.bodies().iter().map(|b| b.id()).collect();
+        let mut angle = 0.0;
+        for step in 0..120 {
+            if step >= 30 {
+                angle += 1.0 / 60.0;
+            }
+            let wrist = UnitQuaternion::from_axis_angle(&axis, angle);
+            for (id, side) in [(ids[0], -1.0), (ids[1], 1.0)] {
+                let at = grasp.centre + wrist * (grasp.finger(side, grasp.centre) - grasp.centre);
+                world
+                    .set_kinematic_target(id, at, wrist * grasp.turn)
+                    .expect("a finger follows its target");
+            }
+            world.step(1.0 / 60.0).expect("steps");
+        }
+        let wrist = UnitQuaternion::from_axis_angle(&axis, angle);
+        let cube = &world.bodies()[2];
+        let off = (cube.position() - grasp.centre).norm();
+        let turned = (cube.rotation() * (wrist * grasp.turn).inverse()).angle();
+        let case = format!("{} model", model.name());
+        assert!(off < 1e-4, "{case}: centre {off} m off");
+        assert!(turned < 1e-4, "{case}: {turned} rad behind the fingers");
+    }
+}
