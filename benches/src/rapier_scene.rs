@@ -1,7 +1,7 @@
 //! A Tatami scene file built in Rapier, for the side-by-side figures: the same bodies (boxes,
 //! unrotated), masses, friction and gravity, Rapier's default integration parameters with the
 //! scene's time step, sleeping off. One type per Rapier build (the crates differ only in
-//! `Real`): [`RapierF64`] here, and any other build through [`rapier_scene!`](crate::rapier_scene).
+//! `Real`): [`RapierF64`] here, and any other build through [`rapier_scene!`](macro@crate::rapier_scene).
 //! Used by the `holding_comparison` bench and the holding experiment of `cargo xtask`.
 
 /// Defines `$name`, the scene of a Tatami [`Scene`](tatami_world::scene::Scene) in the Rapier crate `$rapier` of scalar

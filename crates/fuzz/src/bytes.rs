@@ -40,7 +40,7 @@ impl<'a> Bytes<'a> {
         self.byte() & 1 == 1
     }
 
-    /// A number: mostly a signed fraction of one of [`SCALES`], sometimes the raw bits of an
+    /// A number: mostly a signed fraction of one of `SCALES`, sometimes the raw bits of an
     /// f64 (NaN, ±∞, subnormals included).
     pub fn number(&mut self) -> f64 {
         let head = self.byte();
