@@ -63,6 +63,10 @@ impl Presses {
         self.squeezed.clear();
         self.squeezed.resize(contacts.len(), false);
         self.pressed.clear();
+        // Most worlds have no kinematic body, and a pile's thousands of contacts need no look.
+        if !bodies.iter().any(Body::is_kinematic) {
+            return;
+        }
         for (index, contact) in contacts.enumerate() {
             let (a, b) = (&bodies[contact.body_a.0], &bodies[contact.body_b.0]);
             let awake = |body: &Body| body.is_dynamic() && !body.asleep;
