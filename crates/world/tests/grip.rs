@@ -7,6 +7,7 @@ mod common;
 
 use common::{G, rotation};
 use nalgebra::{Point3, UnitQuaternion, Vector3};
+use proptest::prelude::*;
 use tatami_contact::DEFAULT_SLOP;
 use tatami_lcp::direct::DirectParams;
 use tatami_world::{BodyDesc, ContactModel, Shape, Solver, World, WorldSettings};
@@ -435,6 +436,63 @@ fn a_cube_carried_for_a_minute_reads_a_steady_press() {
                     wrench.normal_force
                 );
             }
+        }
+    }
+}
+
+proptest! {
+    // A fixed seed: the same cases on every run and machine.
+    #![proptest_config(ProptestConfig {
+        cases: 48,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x6772_6970),
+        ..ProptestConfig::default()
+    })]
+
+    /// The squeeze's closed form over random grasps: fingers and cube turned anyhow about the
+    /// vertical and up to 30° about the squeeze's axis (the faces stay upright, turned in
+    /// their plane), any mass from 10 g to 100 kg, friction from 0.2 to 1.2, a squeeze from 0.3
+    /// to 3 times the one that just holds, 60 to 240 Hz: the cube holds iff
+    /// `2 μ (d − slop)/dt² ≥ g`, and otherwise slides at `g` less that, within 1% over a fifth
+    /// of a second.
+    #[test]
+    fn random_squeezes_hold_or_slide_as_the_closed_form(
+        yaw in 0.0..360.0_f64,
+        tilt in -30.0..30.0_f64,
+        mass in 0.01..100.0_f64,
+        mu in 0.2..1.2_f64,
+        factor in 0.3..3.0_f64,
+        hz in 60.0..240.0_f64,
+    ) {
+        // The margin around the threshold where a hold and a slow slide are told apart by
+        // the solve's tolerance rather than the closed form.
+        prop_assume!((factor - 1.0).abs() > 0.05);
+        let dt = 1.0 / hz;
+        let holds_from = G * dt * dt / (2.0 * mu);
+        let turn = rotation([0.0, 0.0, 1.0], yaw) * rotation([1.0, 0.0, 0.0], tilt);
+        let grasp = Grasp {
+            turn,
+            centre: Point3::new(0.0, 0.0, 1.0),
+            squeeze: DEFAULT_SLOP + factor * holds_from,
+            above: 0.0,
+            height: 2.0,
+            mass,
+            mu,
+        };
+        let mut world = grasp.world(WorldSettings::default());
+        let steps = (0.2 * hz).round() as usize;
+        for _ in 0..steps {
+            world.step(dt).expect("steps");
+        }
+        let velocity = world.bodies()[2].linear_velocity();
+        let rate = (G - 2.0 * mu * (grasp.squeeze - DEFAULT_SLOP) / (dt * dt)).max(0.0);
+        let expected = -rate * steps as f64 * dt;
+        if rate > 0.0 {
+            prop_assert!(
+                (velocity.z / expected - 1.0).abs() < 0.01,
+                "slides at {} m/s, closed form {expected}", velocity.z
+            );
+        } else {
+            prop_assert!(velocity.norm() < 1e-4, "held, yet at {velocity:?}");
         }
     }
 }
