@@ -15,7 +15,7 @@
 //! the unbalanced pushes, it crept down the fingers at 6 and 20 mm/s. So a contact pressed
 //! beyond the slop while another pushes its body the other way, also beyond it, is
 //! *squeezed*: the position pass leaves it be (its pushes are zero), and the cube stays where
-//! the fingers hold it, to 2–4 µm under every model, or where a finger holds it against a
+//! the fingers hold it, to 2–5 µm under every model, or where a finger holds it against a
 //! wall. And a contact's press is the mean of its own excess and those of the body's pressed
 //! contacts that push it the other way, so the sides of one squeeze grip alike however the
 //! overlap is shared between them.
@@ -35,6 +35,13 @@ struct Pressed {
     excess: f64,
     driven: bool,
     contact: usize,
+}
+
+impl Pressed {
+    /// Whether a kinematic body presses its body in beyond the slop here.
+    fn presses(&self) -> bool {
+        self.driven && self.excess > 0.0
+    }
 }
 
 /// The presses of one step, reused across steps.
@@ -85,14 +92,14 @@ impl Presses {
             });
         }
         // Most steps of most worlds: no kinematic body presses anything.
-        if !self.pressed.iter().any(|p| p.driven && p.excess > 0.0) {
+        if !self.pressed.iter().any(Pressed::presses) {
             return;
         }
         self.pressed.sort_by_key(|p| p.body);
         let against = |own: &Pressed, other: &Pressed| other.push.dot(&own.push) < 0.0;
         for run in self.pressed.chunk_by(|p, q| p.body == q.body) {
             // Only a body a kinematic body presses in beyond the slop.
-            if !run.iter().any(|p| p.driven && p.excess > 0.0) {
+            if !run.iter().any(Pressed::presses) {
                 continue;
             }
             for own in run {
@@ -103,7 +110,7 @@ impl Presses {
                 let pressed = own.driven
                     || run
                         .iter()
-                        .any(|other| other.driven && other.excess > 0.0 && against(own, other));
+                        .any(|other| other.presses() && against(own, other));
                 if !pressed {
                     continue;
                 }

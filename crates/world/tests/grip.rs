@@ -134,8 +134,8 @@ fn squeezed_for(
 /// its mass. Half and one and a half times the squeeze that just holds, at 60 and 240 Hz, two
 /// coefficients and masses 100 times apart, the fingers tall enough that the cube slides
 /// within them for the quarter second measured. The slide is within 0.1% of the closed form
-/// (measured within 0.03%: the cube turns at up to 0.03 rad/s as it slides, its two grips
-/// updated one after the other); a hold within 10 µm/s (the solve stops at 0.1 mm/s a row).
+/// (measured 1.5e-13); a hold within 10 µm/s (measured 0.11 µm/s; the solve stops at 0.1 mm/s
+/// a row).
 #[test]
 fn a_squeezed_cube_slides_at_the_grip_closed_form_rate_and_holds_above_it() {
     let turn = rotation([0.0, 0.0, 1.0], 40.0);
@@ -166,7 +166,7 @@ fn a_squeezed_cube_slides_at_the_grip_closed_form_rate_and_holds_above_it() {
 /// The fingers close on a cube 4 cm below their centres (the cube hangs off them, so the
 /// grips' twist holds it too), rest half a second, lift it 18 cm at 0.3 m/s and carry it 30 cm
 /// sideways. The cube follows their path to within 0.1 mm, along the squeeze and across it,
-/// and turns by under 0.1 mrad, under every model (measured 0.9–4 µm and 9–18 µrad; the solve
+/// and turns by under 0.1 mrad, under every model (measured 2–5 µm and 10–18 µrad; the solve
 /// stops at 0.1 mm/s a row); with the direct solver under the face model to within 1 mm
 /// (measured 0.18 mm: its friction is a 16-sided polygon's). Before grips the cube fell 30 m;
 /// before squeezed contacts were left out of the position pass, it was shifted 8 mm towards
