@@ -510,8 +510,10 @@ impl ContactSet {
     /// the impulse the pair's blocks applied to body A ([`ContactImpulse::write_face_rows`]),
     /// other rows from the impulse their key had (rows whose key is new keep zero). A pair with
     /// nothing stored under `model` (new, or last solved under another model) starts instead
-    /// with the weight it carries at rest under `weight_per_mass` (gravity × dt) spread evenly
-    /// over its normal rows — see [`crate::load_estimate`]. Landing blocks start from zero
+    /// with the weight it carries at rest under `weight_per_mass` (gravity × dt) — see
+    /// [`crate::load_estimate`]: a face-model block whose upper body rests on it alone with that
+    /// weight where it acts (its tilt rows with the torque that puts the centre of pressure
+    /// there), other blocks spread evenly over their normal rows. Landing blocks start from zero
     /// ([`Entry::started_blocks`]).
     pub(crate) fn warm_start(
         &mut self,
@@ -545,7 +547,21 @@ impl ContactSet {
                     &self.impulses[stored.clone()]
                 }
                 _ => {
-                    spread_over_normal_rows(problem, &started, estimate[index]);
+                    let load = estimate[index];
+                    match (model, load.at) {
+                        // One face block: the guess with its torque about where it acts.
+                        (ContactModel::Face, Some(at)) if started.len() == 1 => {
+                            let linear = entry.contact.frame.normal * load.normal;
+                            let centre_a = entry.contact.centre_a;
+                            let impulse = ContactImpulse {
+                                linear,
+                                angular: (at - centre_a).cross(&linear),
+                                centre_a,
+                            };
+                            impulse.write_face_rows(&mut problem.rows[rows], &centre_a);
+                        }
+                        _ => spread_over_normal_rows(problem, &started, load.normal),
+                    }
                     continue;
                 }
             };
