@@ -27,7 +27,7 @@
 
 use std::ops::Range;
 
-use nalgebra::{Point3, UnitQuaternion, Vector3};
+use nalgebra::{Matrix2, Point2, Point3, UnitQuaternion, Vector2, Vector3};
 use tatami_contact::face::Bearing;
 use tatami_contact::{
     Contact, ContactError, ContactImpulse, ContactModel, ContactProjection, ContactSettings,
@@ -224,6 +224,8 @@ pub(crate) struct ContactSet {
     shock_order: Vec<(usize, Support)>,
     /// Scratch: the first guess for new pairs.
     loads: LoadEstimate,
+    /// Scratch: a new pair's guess shared over its support's vertices ([`shares_towards`]).
+    shares: Vec<f64>,
 }
 
 impl ContactSet {
@@ -513,8 +515,9 @@ impl ContactSet {
     /// with the weight it carries at rest under `weight_per_mass` (gravity × dt) — see
     /// [`crate::load_estimate`]: a face-model block whose upper body rests on it alone with that
     /// weight where it acts (its tilt rows with the torque that puts the centre of pressure
-    /// there), other blocks spread evenly over their normal rows. Landing blocks start from zero
-    /// ([`Entry::started_blocks`]).
+    /// there), a vertex or patch model's normal rows with shares whose resultant acts there
+    /// ([`shares_towards`]), any other evenly spread over its normal rows. Landing blocks start
+    /// from zero ([`Entry::started_blocks`]).
     pub(crate) fn warm_start(
         &mut self,
         model: ContactModel,
@@ -560,7 +563,20 @@ impl ContactSet {
                             };
                             impulse.write_face_rows(&mut problem.rows[rows], &centre_a);
                         }
-                        _ => spread_over_normal_rows(problem, &started, load.normal),
+                        (_, at) => {
+                            let vertices = entry.contact.support.vertices();
+                            let shares = &mut self.shares;
+                            shares.clear();
+                            shares.resize(vertices.len(), 1.0 / vertices.len() as f64);
+                            if let Some(at) = at {
+                                shares_towards(
+                                    vertices,
+                                    &entry.contact.frame.to_plane(&at),
+                                    shares,
+                                );
+                            }
+                            spread_over_normal_rows(problem, &started, load.normal, shares);
+                        }
                     }
                     continue;
                 }
@@ -664,12 +680,15 @@ impl Entry {
     }
 }
 
-/// Spreads the normal impulse `load` evenly over the normal rows of `blocks` (each block's
-/// [`leading_normal_rows`](Projection::leading_normal_rows)).
+/// Spreads the normal impulse `load` over the normal rows of `blocks` (each block's
+/// [`leading_normal_rows`](Projection::leading_normal_rows)): by `shares` when there is one
+/// normal row per share, in the support's vertex order (the vertex model's blocks, the patch
+/// model's rows), otherwise evenly.
 fn spread_over_normal_rows(
     problem: &mut Problem<ContactProjection>,
     blocks: &Range<usize>,
     load: f64,
+    shares: &[f64],
 ) {
     let blocks = &problem.blocks[blocks.clone()];
     let normals: usize = blocks
@@ -679,10 +698,77 @@ fn spread_over_normal_rows(
     if normals == 0 {
         return;
     }
-    for block in blocks {
-        let first = block.rows.start;
-        for row in &mut problem.rows[first..first + block.projection.leading_normal_rows()] {
-            row.impulse = load / normals as f64;
+    let rows = blocks.iter().flat_map(|b| {
+        let first = b.rows.start;
+        first..first + b.projection.leading_normal_rows()
+    });
+    for (k, row) in rows.enumerate() {
+        problem.rows[row].impulse = if normals == shares.len() {
+            load * shares[k]
+        } else {
+            load / normals as f64
+        };
+    }
+}
+
+/// Moves the even `shares` of a load over a support's `vertices` (plane coordinates) so that
+/// their resultant acts at `at`: the least change in the least-squares sense (`δᵢ = uᵢ · λ`,
+/// `uᵢ` a vertex from the vertices' mean, `(Σ uᵢ uᵢᵀ) λ = at − mean`; along its line for a
+/// segment). A vertex whose share would go negative is dropped, and the rest start over
+/// evenly: on a rectangle the first pass is exact up to the edges, and a point near a corner
+/// ends in the triangle of the three vertices round it. A point outside ends on the nearest
+/// vertices' side, the shares non-negative and summing to 1 whatever happens.
+fn shares_towards(vertices: &[Point2<f64>], at: &Point2<f64>, shares: &mut [f64]) {
+    // At most one pass per vertex dropped.
+    for _ in 0..vertices.len() {
+        let active = || {
+            vertices
+                .iter()
+                .zip(shares.iter())
+                .filter(|(_, w)| **w > 0.0)
+        };
+        let n = active().count() as f64;
+        let mean = active().fold(Vector2::zeros(), |m, (v, _)| m + v.coords) / n;
+        let spread = active().fold(Matrix2::zeros(), |s, (v, _)| {
+            let u = v.coords - mean;
+            s + u * u.transpose()
+        });
+        let offset = at.coords - mean;
+        let trace = spread.trace();
+        let ends = (active().next(), active().next_back());
+        let lambda = match ends {
+            _ if trace <= 0.0 => Vector2::zeros(), // one point: all of it there
+            _ if spread.determinant() > 1e-12 * trace * trace => spread
+                .try_inverse()
+                .map_or(Vector2::zeros(), |inverse| inverse * offset),
+            // A segment: along its line only.
+            (Some((first, _)), Some((last, _))) => {
+                let line = (last - first).normalize();
+                line * (line.dot(&offset) / trace)
+            }
+            _ => Vector2::zeros(),
+        };
+        let mut dropped = false;
+        for (share, v) in shares.iter_mut().zip(vertices) {
+            if *share > 0.0 {
+                *share = 1.0 / n + (v.coords - mean).dot(&lambda);
+                if *share <= 0.0 {
+                    *share = 0.0;
+                    dropped = true;
+                }
+            }
+        }
+        if !dropped {
+            return;
+        }
+        // Start the survivors over evenly (they keep a positive mark).
+        let left = shares.iter().filter(|w| **w > 0.0).count();
+        if left == 0 {
+            shares.fill(1.0 / vertices.len() as f64);
+            return;
+        }
+        for share in shares.iter_mut().filter(|w| **w > 0.0) {
+            *share = 1.0 / left as f64;
         }
     }
 }
@@ -1075,5 +1161,68 @@ mod tests {
                 (None, 2)
             ]
         );
+    }
+
+    /// The resultant of the shares, and their sum.
+    fn resultant(vertices: &[Point2<f64>], shares: &[f64]) -> (Point2<f64>, f64) {
+        let at = vertices
+            .iter()
+            .zip(shares)
+            .fold(Vector2::zeros(), |r, (v, w)| r + v.coords * *w);
+        (at.into(), shares.iter().sum())
+    }
+
+    /// On a 2 × 1 rectangle the shares put the load where asked, up to and on the edges (where
+    /// the far side's shares are zero); at the centre they stay even, and beyond an edge they
+    /// stop at it. A segment shares along its line.
+    #[test]
+    fn shares_put_a_load_where_it_acts() {
+        let rectangle = [[-1.0, -0.5], [1.0, -0.5], [1.0, 0.5], [-1.0, 0.5]].map(Point2::from);
+        let mut shares = [0.25; 4];
+        shares_towards(&rectangle, &Point2::origin(), &mut shares);
+        assert_eq!(shares, [0.25; 4]);
+        for at in [[0.3, 0.1], [-0.9, 0.45], [1.0, 0.0], [1.0, 0.5]].map(Point2::from) {
+            let mut shares = [0.25; 4];
+            shares_towards(&rectangle, &at, &mut shares);
+            let (resultant, total) = resultant(&rectangle, &shares);
+            assert!((resultant - at).norm() < 1e-15, "{at}: {shares:?}");
+            assert!((total - 1.0).abs() < 1e-15 && shares.iter().all(|&w| w >= 0.0));
+        }
+        let mut shares = [0.25; 4];
+        shares_towards(&rectangle, &Point2::new(1.5, 0.0), &mut shares);
+        assert_eq!(shares, [0.0, 0.5, 0.5, 0.0]);
+        let segment = [[0.0, 0.0], [2.0, 2.0]].map(Point2::from);
+        let mut shares = [0.5; 2];
+        shares_towards(&segment, &Point2::new(1.5, 1.5), &mut shares);
+        assert!((shares[0] - 0.25).abs() < 1e-15 && (shares[1] - 0.75).abs() < 1e-15);
+    }
+
+    proptest::proptest! {
+        /// Any convex polygon (the hull of 3 to 8 random points) and any point of it: the shares
+        /// are non-negative, sum to 1 and put their resultant at the point.
+        #[test]
+        fn shares_are_a_distribution_with_their_resultant_where_asked(
+            points in proptest::collection::vec((-1.0f64..1.0, -1.0f64..1.0), 3..8),
+            weights in proptest::collection::vec(0.0f64..1.0, 8),
+        ) {
+            let points: Vec<_> = points.iter().map(|&(x, y)| Point2::new(x, y)).collect();
+            let Ok(polygon) = tatami_geometry::ConvexPolygon::from_points(&points) else {
+                return Ok(());
+            };
+            let vertices = polygon.vertices();
+            proptest::prop_assume!(polygon.area() > 1e-3);
+            // A point of the polygon: a convex combination of its vertices.
+            let total: f64 = weights.iter().take(vertices.len()).sum::<f64>() + 1e-9;
+            let at = vertices.iter().zip(&weights).fold(Vector2::zeros(), |p, (v, w)| {
+                p + v.coords * (*w / total)
+            });
+            let at = Point2::from(at);
+            let mut shares = vec![1.0 / vertices.len() as f64; vertices.len()];
+            shares_towards(vertices, &at, &mut shares);
+            let (resultant, sum) = resultant(vertices, &shares);
+            proptest::prop_assert!((sum - 1.0).abs() < 1e-12);
+            proptest::prop_assert!(shares.iter().all(|&w| w >= 0.0));
+            proptest::prop_assert!((resultant - at).norm() < 1e-9, "{resultant} {at} {shares:?}");
+        }
     }
 }

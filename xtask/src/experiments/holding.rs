@@ -264,8 +264,8 @@ fn report(traces: &[Trace], files: Vec<&'static str>) -> Outcome {
          a position pass), under each model, and rapier3d-f64 (its defaults, sleeping off) on the \
          same files. Drift = \
          the largest displacement of any body over the window the tests use (from 2 s on for the \
-         pair and the leaning stack, which settle first under the vertex and patch models; from the \
-         start for the others; from \
+         pair and the leaning stack, where the tests allow a first settling; from the start for \
+         the others; from \
          half the run when the run is shorter, as with `--quick`), then from the start over the \
          whole run, as charted.\n\n\
          | scene | window (s) | required (default model) | vertex | patch | face | face, whole run | rapier3d-f64 |\n\
