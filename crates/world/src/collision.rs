@@ -470,20 +470,36 @@ fn contact_of(
     };
     // The touching features along `normal` (from B into A), their landing points, and the
     // support they make.
+    let support_with =
+        |normal: &Vector3<f64>, features: &mut Features, depths: Vec<f64>, turn_band: f64| {
+            for (k, outward, feature) in
+                [(i, -normal, &mut features.a), (j, *normal, &mut features.b)]
+            {
+                let (outline, body) = (&geometry[k].outline, &bodies[k]);
+                let (origin, rotation) = (body.position(), body.rotation);
+                outline.feature(&origin, &rotation, &outward, feature_angle, feature);
+                let bands = (landing_band, turn_band);
+                outline.landing(&origin, &rotation, &outward, bands, feature);
+            }
+            support(&features.a, &features.b, normal, depths, ids)
+        };
     let support_along = |normal: &Vector3<f64>, features: &mut Features, depths: Vec<f64>| {
-        for (k, outward, feature) in [(i, -normal, &mut features.a), (j, *normal, &mut features.b)]
-        {
-            let (outline, body) = (&geometry[k].outline, &bodies[k]);
-            let (origin, rotation) = (body.position(), body.rotation);
-            outline.feature(&origin, &rotation, &outward, feature_angle, feature);
-            let bands = (landing_band, turn_band);
-            outline.landing(&origin, &rotation, &outward, bands, feature);
-        }
-        support(&features.a, &features.b, normal, depths, ids)
+        support_with(normal, features, depths, turn_band)
     };
     let Some(mut s) = support_along(&normal, features, depths) else {
         return Found::Nothing;
     };
+    // A pair in deeper than its margin has vertices inside the other body besides its touching
+    // feature: those standing back from the feature by less than its depth are landing points
+    // too, or the body turns about its feature further in.
+    let deepest = s.depths.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    if landing_band > 0.0 && deepest > reach.margin.max(turn_band) {
+        let depths = std::mem::take(&mut s.depths);
+        match support_with(&normal, features, depths, deepest) {
+            Some(deep) => s = deep,
+            None => return Found::Nothing,
+        }
+    }
     // A normal found on a cylinder's rounded core reaches past the margin of the true shapes.
     let rounded = geometry[i].collider.is_rounded() || geometry[j].collider.is_rounded();
     if rounded && s.depths.iter().all(|&d| d < -margin) {

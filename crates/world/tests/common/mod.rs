@@ -3,7 +3,7 @@
 
 #![allow(dead_code)] // each test binary uses a subset
 
-use nalgebra::{UnitQuaternion, Vector3};
+use nalgebra::{Point3, UnitQuaternion, Vector3};
 use tatami_world::dropped::Random;
 use tatami_world::scene::{Scene, SceneError};
 use tatami_world::{BodyDesc, Shape, World, WorldBuilder};
@@ -74,4 +74,35 @@ pub fn rejection(text: &str) -> (String, usize, String) {
         }) => (field, line, message),
         other => panic!("expected an invalid-scene error, got {other:?}"),
     }
+}
+
+/// A lopsided six-point hull about `size` across (no face parallel to another), for stacks and
+/// overlaps of hulls.
+pub fn six_point_hull(size: f64) -> Shape {
+    let points: Vec<Point3<f64>> = [
+        [1.0, 0.2, -0.4],
+        [-0.8, 0.9, -0.5],
+        [-0.3, -1.0, -0.45],
+        [0.1, 0.0, 0.9],
+        [0.7, -0.6, 0.3],
+        [-0.6, 0.1, 0.5],
+    ]
+    .iter()
+    .map(|p| Point3::from(p.map(|x| x * size / 2.0)))
+    .collect();
+    Shape::convex(points)
+}
+
+/// Runs `world` for `steps` steps of `dt`; returns the largest displacement of any body.
+pub fn largest_move(world: &mut World, steps: usize, dt: f64) -> f64 {
+    let start: Vec<Point3<f64>> = world.bodies().iter().map(|b| b.position()).collect();
+    for _ in 0..steps {
+        world.step(dt).unwrap();
+    }
+    world
+        .bodies()
+        .iter()
+        .zip(&start)
+        .map(|(b, p)| (b.position() - p).norm())
+        .fold(0.0, f64::max)
 }
