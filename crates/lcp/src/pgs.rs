@@ -857,8 +857,9 @@ pub fn shock_propagation<P: Projection>(
 /// little motion, which a warm start carries into the next step. A tower of 18 levels of three
 /// crossed 1.5 × 2.5 × 7.5 cm blocks at 60 Hz, at rest to 1e-15 m after 5 s, then grew that
 /// motion about 5% a step until it fell at 10–15 s under the vertex and patch models; with 10
-/// sweeps a pair it creeps by 3 nm (patch) and 0.16 µm (vertex) in 60 s. With `pair_sweeps`
-/// = 1 this is [`shock_propagation`].
+/// sweeps a pair, the pass's impulses still warm-started, it creeps by 3 nm (patch) and 0.16 µm
+/// (vertex) in 60 s (`tatami-world` now warm-starts those models from the sweeps' impulses,
+/// and it stands to 1e-14 m). With `pair_sweeps` = 1 this is [`shock_propagation`].
 pub fn shock_propagation_per_pair<P: Projection>(
     problem: &mut Problem<P>,
     workspace: &mut PgsWorkspace,
@@ -880,6 +881,7 @@ pub fn shock_propagation_per_pair<P: Projection>(
             return Err(LcpError::MalformedBlock { block: index });
         }
     }
+    let sweeps = pair_sweeps.max(1);
     let mut at = 0;
     while at < order.len() {
         // One pair's blocks: the entries after `at` on the same two bodies, held the same way.
@@ -893,7 +895,6 @@ pub fn shock_propagation_per_pair<P: Projection>(
             .count();
         let group = &order[at..at + len];
         at += len;
-        let sweeps = pair_sweeps.max(1);
         // The blocks' responses with the supporting body immovable go after the solve's own,
         // in the group's order: all of them first when the pair is swept more than once,
         // otherwise each when its block is first updated (most blocks of a position pass stay

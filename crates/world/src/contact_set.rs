@@ -698,12 +698,13 @@ fn spread_over_normal_rows(
     if normals == 0 {
         return;
     }
+    let by_shares = normals == shares.len();
     let rows = blocks.iter().flat_map(|b| {
         let first = b.rows.start;
         first..first + b.projection.leading_normal_rows()
     });
     for (k, row) in rows.enumerate() {
-        problem.rows[row].impulse = if normals == shares.len() {
+        problem.rows[row].impulse = if by_shares {
             load * shares[k]
         } else {
             load / normals as f64
