@@ -7,6 +7,8 @@
 //! 2. twist `|τ3 − (p × f)·n| ≤ μ f3 r̄`, `r̄` the mean distance of the polygon from `G`
 //!    (exact): bounded about the centre of pressure `p` below, where the friction force `f`
 //!    acts, not about `G` as the paper bounds it ([`TwistCentre`]; the same where `p = G`);
+//!    with the circle, 1 and 2 are one ellipsoid by default, `|f|² + (τ′/r̄)² ≤ (μ f3)²` with
+//!    `τ′ = τ3 − (p × f)·n`, the face's limit surface ([`FrictionLimit`]);
 //! 3. tilt: the centre of pressure `p = (−τ2, τ1) / f3` (relative to `G`) must lie in the
 //!    polygon; if not, it moves to the nearest point `p̂` and `τ1 = p̂_y f3`, `τ2 = −p̂_x f3`.
 //!
@@ -45,7 +47,7 @@
 
 use nalgebra::{Point2, Vector2, Vector3};
 use tatami_geometry::{ConvexPolygon, PolygonKind, Sector};
-use tatami_lcp::{Block, LinearSet, Problem, Projection, Row, RowBound, SolverBody};
+use tatami_lcp::{Block, LinearSet, Problem, Projection, Row, RowBound, SolverBody, TwistCoupling};
 
 use crate::bearing::{bearing_depth, bearing_part};
 use crate::jacobian::{angular_jacobian, block_friction_motion, point_jacobian, twist_rate};
@@ -53,8 +55,8 @@ use crate::segment::SegmentProjection;
 use crate::target::normal_target;
 use crate::vertex;
 use crate::{
-    Contact, ContactError, ContactProjection, ContactSettings, FrictionCone, TwistCentre,
-    TwistRadius,
+    Contact, ContactError, ContactProjection, ContactSettings, FrictionCone, FrictionLimit,
+    TwistCentre, TwistRadius,
 };
 
 /// Rows of a face constraint.
@@ -94,6 +96,9 @@ pub struct FaceProjection {
     pub remove_parallel_torque: bool,
     /// About which point the twist is bounded.
     pub twist_centre: TwistCentre,
+    /// Whether the friction force and the twist share one limit surface (with the circle
+    /// cone and without the parallel-torque variant).
+    pub friction_limit: FrictionLimit,
     /// Fan sector of the last centre of pressure: the next search starts there.
     pub hint: Sector,
     /// The polygon's [clearance](ConvexPolygon::clearance) about `G`: a centre of pressure
@@ -137,6 +142,58 @@ impl FaceProjection {
         )
     }
 
+    /// Whether the friction force and the twist about the centre of pressure share one
+    /// ellipsoidal limit surface ([`FrictionLimit::Coupled`]).
+    fn coupled(&self) -> bool {
+        self.friction_limit == FrictionLimit::Coupled
+            && self.cone == FrictionCone::Circle
+            && !self.remove_parallel_torque
+    }
+
+    /// `|f|² + (τ′/r̄)²` against `(μ f3)²` in the ball's own units (`τ′` the twist about the
+    /// centre of pressure, `r̄ = μ r̄ / μ`), the bound widened by 4 ulps so that a wrench just
+    /// scaled onto the ball counts as on it despite the scaling's roundings: `None` where the
+    /// twist has no room (no load, no friction or `r̄ = 0`), when the bound is the disc alone
+    /// and `τ′ = 0`.
+    fn limit_surface(&self, impulses: &[f64]) -> Option<(f64, f64)> {
+        let f3 = impulses[NORMAL];
+        let (force_limit, twist_limit) = (self.friction * f3, self.twist_per_normal * f3);
+        if !(force_limit > 0.0 && twist_limit > 0.0) {
+            return None;
+        }
+        let (f1, f2) = (impulses[FRICTION_1], impulses[FRICTION_1 + 1]);
+        let about = (impulses[TWIST] - self.twist_midpoint(impulses)) * force_limit / twist_limit;
+        Some((
+            f1 * f1 + f2 * f2 + about * about,
+            force_limit * force_limit * (1.0 + 4.0 * f64::EPSILON),
+        ))
+    }
+
+    /// Scales the friction force and the twist about the centre of pressure back onto their
+    /// ellipsoid (direction kept: radial in `(f, τ′/r̄)`). `τ3 = τ′ + (p × f)·n` is linear in
+    /// `(f, τ′)` for a fixed `p`, so the three rows scale alike.
+    fn clamp_limit_surface(&self, impulses: &mut [f64]) {
+        match self.limit_surface(impulses) {
+            Some((squared, limit)) => {
+                if squared > limit {
+                    let f3 = impulses[NORMAL];
+                    let shrink = self.friction * f3 / squared.sqrt();
+                    for row in [FRICTION_1, FRICTION_1 + 1, TWIST] {
+                        impulses[row] *= shrink;
+                    }
+                }
+            }
+            None => {
+                let f3 = impulses[NORMAL];
+                self.cone.clamp(
+                    &mut impulses[FRICTION_1..FRICTION_1 + 2],
+                    self.friction * f3,
+                );
+                impulses[TWIST] = self.twist_midpoint(impulses);
+            }
+        }
+    }
+
     fn clamp_zmp(&mut self, impulses: &mut [f64]) {
         let f3 = impulses[NORMAL];
         let Some(p) = Self::centre_of_pressure(impulses) else {
@@ -165,6 +222,14 @@ impl Projection for FaceProjection {
     #[inline]
     fn project(&mut self, impulses: &mut [f64], changed: usize) {
         impulses[NORMAL] = impulses[NORMAL].max(0.0);
+        if self.coupled() {
+            // The centre of pressure first: the twist's ellipsoid is about it.
+            if matches!(changed, NORMAL | TILT_1 | TILT_2) {
+                self.clamp_zmp(impulses);
+            }
+            self.clamp_limit_surface(impulses);
+            return;
+        }
         let f3 = impulses[NORMAL];
         self.cone.clamp(&mut impulses[1..3], self.friction * f3);
         if self.remove_parallel_torque {
@@ -187,6 +252,23 @@ impl Projection for FaceProjection {
     #[inline]
     fn tangent_pair(&self) -> Option<usize> {
         self.cone.tangent_pair(FRICTION_1)
+    }
+
+    /// The twist row, coupled to the friction pair by the limit surface, with `p` the centre of
+    /// pressure relative to `G` (`G` itself when the twist is bounded there).
+    fn twist_coupling(&self, impulses: &[f64]) -> Option<TwistCoupling> {
+        if !(self.coupled() && self.friction > 0.0 && self.twist_per_normal > 0.0) {
+            return None;
+        }
+        let centre = match Self::centre_of_pressure(impulses) {
+            Some(p) if self.twist_centre == TwistCentre::CentreOfPressure => [p.x, p.y],
+            _ => [0.0, 0.0],
+        };
+        Some(TwistCoupling {
+            row: TWIST,
+            radius: self.twist_per_normal / self.friction,
+            centre,
+        })
     }
 
     /// `f3`; without it the face carries no friction, twist or tilt.
@@ -212,11 +294,22 @@ impl Projection for FaceProjection {
             return impulses.iter().all(|&x| x == 0.0);
         };
         let f3 = impulses[NORMAL];
-        let within_cone = self
-            .cone
-            .contains(&impulses[FRICTION_1..FRICTION_1 + 2], self.friction * f3);
-        let (low, high) = self.twist_bounds(impulses);
-        if !within_cone || !(low..=high).contains(&impulses[TWIST]) {
+        let within = if self.coupled() {
+            match self.limit_surface(impulses) {
+                Some((squared, limit)) => squared <= limit,
+                None => {
+                    self.cone
+                        .contains(&impulses[FRICTION_1..FRICTION_1 + 2], self.friction * f3)
+                        && impulses[TWIST] == self.twist_midpoint(impulses)
+                }
+            }
+        } else {
+            let (low, high) = self.twist_bounds(impulses);
+            self.cone
+                .contains(&impulses[FRICTION_1..FRICTION_1 + 2], self.friction * f3)
+                && (low..=high).contains(&impulses[TWIST])
+        };
+        if !within {
             return false;
         }
         if p.coords.norm_squared() < self.clearance * self.clearance {
@@ -241,8 +334,9 @@ impl Projection for FaceProjection {
     /// normal force at vertex `k` (its condition is that vertex's separation speed ≥ 0). Friction
     /// and twist act at `G`, bounded by `μ f3` and `μ r̄ f3` with `f3 = Σ βₖ`: the twist about
     /// `G` whatever [`TwistCentre`] says, since about the centre of pressure the bound is not
-    /// linear (a product of the tilts and the friction). `None` with the parallel-torque
-    /// variant, which is not linear.
+    /// linear (a product of the tilts and the friction), and apart whatever [`FrictionLimit`]
+    /// says (an ellipsoid is not a polyhedron). `None` with the parallel-torque variant, which
+    /// is not linear.
     fn linear_set(&self, rows: usize) -> Option<LinearSet> {
         if self.remove_parallel_torque {
             return None;
@@ -586,6 +680,7 @@ fn build_bearing(
             cone: settings.friction_cone,
             remove_parallel_torque: settings.remove_parallel_torque,
             twist_centre: settings.twist_centre,
+            friction_limit: settings.friction_limit,
             hint: Sector::default(),
             clearance: contact.support.clearance(&centre),
         }),
@@ -803,7 +898,7 @@ mod tests {
         ));
     }
 
-    /// The twist interval by hand: a 2 × 2 square about `G`, `f3 = 2` with its centre of
+    /// The twist interval by hand, the bounds apart ([`FrictionLimit::Separate`]): a 2 × 2 square about `G`, `f3 = 2` with its centre of
     /// pressure at `p = (0.5, 0)` (`τ2 = −1`) and friction `(0, 0.8)`, whose moment at `p` is
     /// `0.5 · 0.8 = 0.4`; with `μ r̄ = 0.1` the twist about `G` may be `0.4 ± 0.2`, or `±0.2`
     /// about `G` itself. The segment's likewise, its centre of pressure `x = −τu / f3 = 0.5`
@@ -821,6 +916,7 @@ mod tests {
             cone: FrictionCone::Circle,
             remove_parallel_torque: false,
             twist_centre,
+            friction_limit: FrictionLimit::Separate,
             hint: Sector::default(),
             clearance: 0.0,
         };
@@ -867,6 +963,80 @@ mod tests {
                     (impulses[4] - (centre + twist * 0.2)).abs() < 1e-15,
                     "{twist_centre:?}: {impulses:?}"
                 );
+            }
+        }
+    }
+    /// The coupled limit surface by hand: the square above, `f3 = 2`, `μ = 0.5` (`|f| ≤ 1`),
+    /// `μ r̄ = 0.1` (`r̄ = 0.2`), centre of pressure `p = (0.5, 0)` and friction `(0, 0.8)`,
+    /// whose moment at `p` is 0.4: the twist about `p` may be `±0.2 √(1 − 0.8²) = ±0.12`, so
+    /// `τ3 ∈ [0.28, 0.52]` stands. `τ3 = 0.9` (0.5 about `p`) is outside: `(f, τ′/r̄) = (0, 0.8,
+    /// 2.5)` scales by `1/√6.89` onto the ball, force and twist together, `p` kept. Then a sweep
+    /// of wrenches: each lands on or in the ball, along its own direction, and `admissible`
+    /// agrees with the projection.
+    #[test]
+    fn the_force_and_the_twist_share_one_ellipsoid() {
+        let square =
+            [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(x, y)| Point2::new(x, y));
+        let mut face = FaceProjection {
+            support: ConvexPolygon::from_points(&square).unwrap(),
+            centre: Point2::origin(),
+            friction: 0.5,
+            twist_per_normal: 0.1,
+            cone: FrictionCone::Circle,
+            remove_parallel_torque: false,
+            twist_centre: TwistCentre::CentreOfPressure,
+            friction_limit: FrictionLimit::Coupled,
+            hint: Sector::default(),
+            clearance: 0.0,
+        };
+        for (twist, stands) in [
+            (0.27, false),
+            (0.28, true),
+            (0.4, true),
+            (0.52, true),
+            (0.53, false),
+        ] {
+            assert_eq!(
+                face.admissible(&[2.0, 0.0, 0.8, 0.0, -1.0, twist]),
+                stands,
+                "{twist}"
+            );
+        }
+        let mut impulses = [2.0, 0.0, 0.8, 0.0, -1.0, 0.9];
+        face.project(&mut impulses, TWIST);
+        let shrink = 1.0 / 6.89f64.sqrt();
+        let expected = [2.0, 0.0, 0.8 * shrink, 0.0, -1.0, 0.9 * shrink];
+        for (got, want) in impulses.iter().zip(expected) {
+            assert!((got - want).abs() < 1e-15, "{impulses:?}");
+        }
+        // The ball's units: (f1, f2, (τ3 − (p × f)·n) / r̄) with p = (0.5, 0) and r̄ = 0.2.
+        let ball = |λ: &[f64; 6]| [λ[1], λ[2], (λ[5] - 0.5 * λ[2]) / 0.2];
+        for i in 0..9 {
+            for j in 0..9 {
+                for t in 0..9 {
+                    let (f1, f2, twist) = (
+                        -1.2 + 0.3 * i as f64,
+                        -1.2 + 0.3 * j as f64,
+                        -0.6 + 0.15 * t as f64,
+                    );
+                    let before = [2.0, f1, f2, 0.0, -1.0, twist];
+                    let mut after = before;
+                    face.project(&mut after, FRICTION_1);
+                    let (u, w) = (ball(&before), ball(&after));
+                    let norm = |v: [f64; 3]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+                    // The wrench 1 N·s from the rim is 1 N·s from it after roundings of 1e-16.
+                    assert!(norm(w) <= 1.0 + 1e-12, "{before:?} → {after:?}");
+                    let inside = norm(u) <= 1.0;
+                    if inside {
+                        assert_eq!(after, before);
+                    } else {
+                        assert!((norm(w) - 1.0).abs() < 1e-12, "{before:?} → {after:?}");
+                        for k in 0..3 {
+                            assert!((w[k] - u[k] / norm(u)).abs() < 1e-12, "{before:?}");
+                        }
+                    }
+                    assert!(face.admissible(&after), "{before:?} → {after:?}");
+                }
             }
         }
     }

@@ -94,5 +94,5 @@ pub use point_friction::PointFriction;
 pub use projection::ContactProjection;
 pub use settings::{
     ContactSettings, DEFAULT_BIAS_RATE, DEFAULT_MAX_DEPENETRATION_SPEED, DEFAULT_MAX_VELOCITY_BIAS,
-    DEFAULT_SLOP, FrictionCone, TwistCentre, TwistRadius,
+    DEFAULT_SLOP, FrictionCone, FrictionLimit, TwistCentre, TwistRadius,
 };

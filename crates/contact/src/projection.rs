@@ -1,6 +1,6 @@
 //! One projection type for the blocks of every contact model, so one problem holds them all.
 
-use tatami_lcp::{LinearSet, Projection, RowBound};
+use tatami_lcp::{LinearSet, Projection, RowBound, TwistCoupling};
 
 use crate::PointFriction;
 use crate::face::FaceProjection;
@@ -44,6 +44,14 @@ impl Projection for ContactProjection {
             Self::Face(p) => p.tangent_pair(),
             Self::Segment(p) => p.tangent_pair(),
             Self::Grip(p) => p.tangent_pair(),
+        }
+    }
+
+    #[inline]
+    fn twist_coupling(&self, impulses: &[f64]) -> Option<TwistCoupling> {
+        match self {
+            Self::Face(p) => p.twist_coupling(impulses),
+            Self::Point(_) | Self::Patch(_) | Self::Segment(_) | Self::Grip(_) => None,
         }
     }
 

@@ -2,12 +2,13 @@
 //! exactly when projecting it changes nothing. PGS keeps a whole-block step only when
 //! `admissible` says so, so a wrench it wrongly accepts would leave the face's set, and one it
 //! wrongly rejects (the zero wrench of an unloaded face, say) sends the face to the slower
-//! row-by-row update for the rest of the solve.
+//! row-by-row update for the rest of the solve. Both friction limits: the force and the twist
+//! bounded apart, or on one ellipsoid.
 
 use nalgebra::Point2;
 use proptest::prelude::*;
 use tatami_contact::face::FaceProjection;
-use tatami_contact::{FrictionCone, TwistCentre};
+use tatami_contact::{FrictionCone, FrictionLimit, TwistCentre};
 use tatami_geometry::{ConvexPolygon, Sector};
 use tatami_lcp::Projection;
 
@@ -17,6 +18,7 @@ fn face(
     cone: FrictionCone,
     clearance: bool,
     twist_centre: TwistCentre,
+    friction_limit: FrictionLimit,
 ) -> Option<FaceProjection> {
     let points: Vec<Point2<f64>> = points.iter().map(|&(x, y)| Point2::new(x, y)).collect();
     let support = ConvexPolygon::from_points(&points).ok()?;
@@ -37,6 +39,7 @@ fn face(
         cone,
         remove_parallel_torque: false,
         twist_centre,
+        friction_limit,
         hint: Sector(0),
     })
 }
@@ -82,12 +85,14 @@ proptest! {
         circular in any::<bool>(),
         clearance in any::<bool>(),
         about_pressure in any::<bool>(),
+        coupled in any::<bool>(),
         wrench in wrench(),
     ) {
         let cone = if circular { FrictionCone::Circle } else { FrictionCone::Box };
         let twist_centre =
             if about_pressure { TwistCentre::CentreOfPressure } else { TwistCentre::Centroid };
-        let Some(mut face) = face(&points, cone, clearance, twist_centre) else {
+        let limit = if coupled { FrictionLimit::Coupled } else { FrictionLimit::Separate };
+        let Some(mut face) = face(&points, cone, clearance, twist_centre, limit) else {
             return Ok(());
         };
         let mut projected = wrench;
@@ -108,6 +113,7 @@ fn an_unloaded_face_admits_only_the_zero_wrench() {
         FrictionCone::Circle,
         true,
         TwistCentre::CentreOfPressure,
+        FrictionLimit::Coupled,
     )
     .expect("a square face");
     assert!(face.admissible(&[0.0; 6]));

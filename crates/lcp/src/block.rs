@@ -1,7 +1,8 @@
 //! Blocks (one contact's rows) and the projection trait the contact models implement.
 //!
 //! PGS updates a block's rows one at a time (a friction pair named by
-//! [`Projection::tangent_pair`] as one 2-D update); after each update it calls the block's
+//! [`Projection::tangent_pair`] as one 2-D update, or with the twist row named by
+//! [`Projection::twist_coupling`] as one 3-D update); after each update it calls the block's
 //! [`Projection::project`], naming the row that changed, and pushes whatever the projection moved
 //! into the velocities. The block's impulses are thus admissible after every update, so the next
 //! row never reacts to an impulse that is about to be clamped away (projecting only once per
@@ -52,6 +53,20 @@ pub enum RowBound {
     },
 }
 
+/// A friction pair and a twist row bounded by one limit surface (a contact face's, in the
+/// ellipsoidal model of planar sliding): with `p` the point the friction force acts at, relative
+/// to where the pair's rows measure velocity, the twist about `p` is `τ′ = τ − (p × f)·n`, and
+/// the admissible `(f₁, f₂, τ′/r̄)` form a ball.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TwistCoupling {
+    /// The twist row's index within the block.
+    pub row: usize,
+    /// `r̄` (m): the twist bound per unit of the friction bound, so `τ′/r̄` weighs like a force.
+    pub radius: f64,
+    /// `p` (m), in the tangent pair's axes.
+    pub centre: [f64; 2],
+}
+
 /// How a block's impulses are mapped onto its admissible set during a sweep.
 pub trait Projection {
     /// Projects `impulses` (the block's rows, in order) in place after row `changed` was updated
@@ -66,6 +81,16 @@ pub trait Projection {
     /// friction budget: the fixed point is off the slip direction. See [`crate::pgs`] for the
     /// 2-D step and why its fixed point is Coulomb's maximal dissipation.
     fn tangent_pair(&self) -> Option<usize> {
+        None
+    }
+
+    /// The twist row that the [`tangent_pair`](Projection::tangent_pair) shares one limit
+    /// surface with, for `impulses` (the block's current ones), if any: a contact face's
+    /// friction force and twist bounded together, `|f|² + (τ′/r̄)² ≤ (μ f_n)²`. PGS then
+    /// updates the pair and that row as one 3-D step (see [`crate::pgs`]); `None` (the default)
+    /// updates the twist row alone.
+    fn twist_coupling(&self, impulses: &[f64]) -> Option<TwistCoupling> {
+        let _ = impulses;
         None
     }
 

@@ -35,7 +35,7 @@ pub mod pgs;
 pub mod residual;
 mod row;
 
-pub use block::{Block, BoundsProjection, Projection, RowBound, project_to_bounds};
+pub use block::{Block, BoundsProjection, Projection, RowBound, TwistCoupling, project_to_bounds};
 pub use body::{BodyId, SolverBody};
 pub use dense::pgs_dense;
 pub use error::LcpError;

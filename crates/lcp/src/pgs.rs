@@ -25,6 +25,17 @@
 //! Coulomb's maximal dissipation. The Newton step `Δλ = −K⁻¹e` was rejected: its fixed point is
 //! `λ ∥ −K⁻¹e`, off the slip direction wherever `K` is not isotropic (a cube's corner).
 //!
+//! **Friction pairs with a twist.** A contact face's friction force and its twist about the
+//! point `p` where that force acts may share one limit surface ([`Projection::twist_coupling`]):
+//! the ball `|u| ≤ μ f_n` in `u = (f₁, f₂, τ′/r̄)`, `τ′ = τ₃ − (p × f)·n`. Its conjugate
+//! velocity is `g = (e₁ − p_y e₃, e₂ + p_x e₃, r̄ e₃)` — the slip at `p` and `r̄` times the
+//! spin, since `λ·e = u·g` — and the pair and the twist row are stepped together along `−g`
+//! in `u` (`Δλ = s d`, `d` that direction in the rows, `s = ω |g|² / dᵀKd` the exact line
+//! search on the 3 × 3 block of `A`), then the projection scales `u` back onto the ball. As for
+//! the pair, a fixed point on the rim has `u ∥ −g`: the wrench that dissipates most on the
+//! limit surface. Stepping the twist row on its own instead, each step's scaling takes the
+//! budget from the other rows: a puck sliding and spinning sped up.
+//!
 //! **Whole blocks.** A block that asks for it ([`Projection::whole_block`]: the face model's
 //! faces) is first stepped whole, `Δλ = −ω K⁻¹ e` with `K` its own 6 × 6 block of `A`
 //! (factored by Cholesky when first needed in a solve), and the step is kept if it lands in
@@ -767,6 +778,8 @@ fn update_block_rows<P: Projection, const ROWS: usize>(
         .tangent_pair()
         .filter(|&first| first + 1 < rows.len());
     let normals = projection.leading_normal_rows();
+    // The twist row the pair's last step also moved: not stepped again on its own.
+    let mut coupled_twist = None;
     let mut k = 0;
     while k < rows.len() {
         let error = |r: usize, a: &Motion, b: &Motion| {
@@ -775,16 +788,57 @@ fn update_block_rows<P: Projection, const ROWS: usize>(
                 .velocity_of([&a.linear, &a.angular], [&b.linear, &b.angular])
                 - rows[r].target
         };
+        if coupled_twist == Some(k) {
+            k += 1;
+            continue;
+        }
         let width = if pair == Some(k) {
-            // Exact line search along −e on the quadratic ½ λᵀKλ + eᵀλ (module doc).
             let (e1, e2) = (error(k, a, b), error(k + 1, a, b));
             let (r1, r2) = (&responses[k], &responses[k + 1]);
-            let curvature =
-                r1.inverse_mass * e1 * e1 + 2.0 * r1.coupling * e1 * e2 + r2.inverse_mass * e2 * e2;
-            if curvature > 0.0 {
-                let step = relaxation * (e1 * e1 + e2 * e2) / curvature;
-                impulse[k] -= step * e1;
-                impulse[k + 1] -= step * e2;
+            let coupling = projection
+                .twist_coupling(impulse)
+                .filter(|c| c.row > k + 1 && c.row < rows.len());
+            coupled_twist = coupling.map(|c| c.row);
+            match coupling {
+                // Exact line search along the limit surface's slip direction (module doc).
+                Some(c) => {
+                    let e3 = error(c.row, a, b);
+                    let [px, py] = c.centre;
+                    let slip = [e1 - py * e3, e2 + px * e3, c.radius * e3];
+                    let d = [
+                        -slip[0],
+                        -slip[1],
+                        -(c.radius * slip[2] + px * slip[1] - py * slip[0]),
+                    ];
+                    let r3 = &responses[c.row];
+                    let (k13, k23) = (
+                        along(&rows[c.row].jacobian, r1),
+                        along(&rows[c.row].jacobian, r2),
+                    );
+                    let curvature = r1.inverse_mass * d[0] * d[0]
+                        + r2.inverse_mass * d[1] * d[1]
+                        + r3.inverse_mass * d[2] * d[2]
+                        + 2.0 * (r1.coupling * d[0] * d[1] + k13 * d[0] * d[2] + k23 * d[1] * d[2]);
+                    if curvature > 0.0 {
+                        let step = relaxation
+                            * (slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2])
+                            / curvature;
+                        impulse[k] += step * d[0];
+                        impulse[k + 1] += step * d[1];
+                        impulse[c.row] += step * d[2];
+                    }
+                }
+                // Exact line search along −e on the quadratic ½ λᵀKλ + eᵀλ (module doc).
+                None => {
+                    let curvature = r1.inverse_mass * e1 * e1
+                        + 2.0 * r1.coupling * e1 * e2
+                        + r2.inverse_mass * e2 * e2;
+                    if curvature > 0.0 {
+                        let step = relaxation * (e1 * e1 + e2 * e2) / curvature;
+                        impulse[k] -= step * e1;
+                        impulse[k + 1] -= step * e2;
+                    }
+                }
             }
             2
         } else {

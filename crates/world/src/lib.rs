@@ -58,7 +58,7 @@ pub use settings::{MAX_ITERATIONS, PGS_TOLERANCE, Solver, WorldSettings};
 pub use shape::{HullMesh, LENGTHS, MassProperties, Shape};
 pub use sleep::{SLEEP_DEPTH_TOLERANCE, Sleeping};
 pub use tatami_contact::{
-    ContactModel, ContactProjection, ContactSettings, FrictionCone, TwistCentre,
+    ContactModel, ContactProjection, ContactSettings, FrictionCone, FrictionLimit, TwistCentre,
 };
 pub use tatami_lcp::direct::{DirectInfo, DirectParams};
 pub use tatami_lcp::pgs::{PgsParams, WarmStart};

@@ -7,7 +7,9 @@
 //! [`crate::Sleeping`]), `friction_cone` (`"circle"`,
 //! the isotropic default, or `"box"`, the paper's pyramid), `twist_centre`
 //! (`"centre_of_pressure"`, the default, or `"centroid"`, the paper's bound; see
-//! [`crate::TwistCentre`]), `bias_rate`, `slop`,
+//! [`crate::TwistCentre`]), `friction_limit` (`"coupled"`, the default: a face's friction
+//! force and twist on one ellipsoid, or `"separate"`, the paper's bounds apart; see
+//! [`crate::FrictionLimit`]), `bias_rate`, `slop`,
 //! `max_depenetration_speed` (m/s, > 0) and `max_velocity_bias` (m/s, ≥ 0; see
 //! [`tatami_contact::ContactSettings`]), and `contact_margin` (m, ≥ 0; see
 //! [`WorldSettings::contact_margin`]: with `slop`, what to scale down for bodies of a
@@ -49,7 +51,7 @@ use std::path::{Path, PathBuf};
 
 use nalgebra::{Point3, Unit, UnitQuaternion, Vector3};
 use serde::{Deserialize, Deserializer};
-use tatami_contact::{ContactModel, FrictionCone, TwistCentre};
+use tatami_contact::{ContactModel, FrictionCone, FrictionLimit, TwistCentre};
 use tatami_lcp::direct::DirectParams;
 use tatami_lcp::pgs::{PgsParams, WarmStart};
 use thiserror::Error;
@@ -291,6 +293,13 @@ enum TwistCentreName {
     Centroid,
 }
 
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(rename_all = "snake_case")]
+enum FrictionLimitName {
+    Coupled,
+    Separate,
+}
+
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawScene {
@@ -318,6 +327,8 @@ struct RawScene {
     friction_cone: Option<ConeName>,
     #[serde(default, deserialize_with = "present")]
     twist_centre: Option<TwistCentreName>,
+    #[serde(default, deserialize_with = "present")]
+    friction_limit: Option<FrictionLimitName>,
     #[serde(default, deserialize_with = "fraction")]
     bias_rate: Option<f64>,
     #[serde(default, deserialize_with = "present")]
@@ -440,6 +451,12 @@ impl RawScene {
             settings.contact.twist_centre = match centre {
                 TwistCentreName::CentreOfPressure => TwistCentre::CentreOfPressure,
                 TwistCentreName::Centroid => TwistCentre::Centroid,
+            };
+        }
+        if let Some(limit) = self.friction_limit {
+            settings.contact.friction_limit = match limit {
+                FrictionLimitName::Coupled => FrictionLimit::Coupled,
+                FrictionLimitName::Separate => FrictionLimit::Separate,
             };
         }
         if let Some(rate) = self.bias_rate {

@@ -19,7 +19,8 @@ pub enum Solver {
     /// contact model. Its problem must be linear, so it takes the circular friction cone as its
     /// inscribed polygon of [`tatami_contact::FrictionCone::DIRECT_FACETS`] sides, and the face
     /// model's twist bound about the support's centroid
-    /// ([`tatami_contact::TwistCentre::Centroid`]).
+    /// ([`tatami_contact::TwistCentre::Centroid`]) and apart from the friction force
+    /// ([`tatami_contact::FrictionLimit::Separate`]).
     Direct(DirectParams),
 }
 

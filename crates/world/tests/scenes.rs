@@ -196,7 +196,7 @@ fn solver_options_are_read() {
 fn contact_options_are_read_and_checked() {
     let text = scene_with(
         4,
-        r#"  "friction_cone": "box", "max_depenetration_speed": 2.5, "max_velocity_bias": 0, "twist_centre": "centroid", "slop": 0.0001, "contact_margin": 0.001,"#,
+        r#"  "friction_cone": "box", "max_depenetration_speed": 2.5, "max_velocity_bias": 0, "twist_centre": "centroid", "friction_limit": "separate", "slop": 0.0001, "contact_margin": 0.001,"#,
     );
     let settings = Scene::from_json(&text).unwrap().settings;
     assert_eq!(settings.contact_margin, 0.001);
@@ -204,6 +204,10 @@ fn contact_options_are_read_and_checked() {
     let contact = settings.contact;
     assert_eq!(contact.friction_cone, tatami_world::FrictionCone::Box);
     assert_eq!(contact.twist_centre, tatami_world::TwistCentre::Centroid);
+    assert_eq!(
+        contact.friction_limit,
+        tatami_world::FrictionLimit::Separate
+    );
     assert_eq!(contact.max_depenetration_speed, 2.5);
     assert_eq!(contact.max_velocity_bias, 0.0);
     let plain_settings = Scene::from_json(&scene_with(0, "")).unwrap().settings;
@@ -222,11 +226,17 @@ fn contact_options_are_read_and_checked() {
         tatami_world::TwistCentre::CentreOfPressure,
         "twist about the centre of pressure unless asked for"
     );
+    assert_eq!(
+        plain.friction_limit,
+        tatami_world::FrictionLimit::Coupled,
+        "force and twist on one limit surface unless asked for"
+    );
     for (option, message) in [
         (r#"  "max_depenetration_speed": 0,"#, "> 0"),
         (r#"  "max_velocity_bias": -1,"#, "≥ 0"),
         (r#"  "contact_margin": -0.001,"#, "≥ 0"),
         (r#"  "twist_centre": "origin","#, "unknown variant"),
+        (r#"  "friction_limit": "box","#, "unknown variant"),
     ] {
         let (field, line, got) = rejection(&scene_with(4, option));
         let name = option.trim().split('"').nth(1).unwrap();
