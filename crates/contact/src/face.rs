@@ -51,6 +51,7 @@ use tatami_lcp::{Block, LinearSet, Problem, Projection, Row, RowBound, SolverBod
 
 use crate::bearing::{bearing_depth, bearing_part};
 use crate::jacobian::{angular_jacobian, block_friction_motion, point_jacobian, twist_rate};
+use crate::limit_surface::{LimitSurface, is_coupled};
 use crate::segment::SegmentProjection;
 use crate::target::normal_target;
 use crate::vertex;
@@ -142,56 +143,16 @@ impl FaceProjection {
         )
     }
 
-    /// Whether the friction force and the twist about the centre of pressure share one
-    /// ellipsoidal limit surface ([`FrictionLimit::Coupled`]).
-    fn coupled(&self) -> bool {
-        self.friction_limit == FrictionLimit::Coupled
-            && self.cone == FrictionCone::Circle
-            && !self.remove_parallel_torque
-    }
-
-    /// `|f|² + (τ′/r̄)²` against `(μ f3)²` in the ball's own units (`τ′` the twist about the
-    /// centre of pressure, `r̄ = μ r̄ / μ`), the bound widened by 4 ulps so that a wrench just
-    /// scaled onto the ball counts as on it despite the scaling's roundings: `None` where the
-    /// twist has no room (no load, no friction or `r̄ = 0`), when the bound is the disc alone
-    /// and `τ′ = 0`.
-    fn limit_surface(&self, impulses: &[f64]) -> Option<(f64, f64)> {
-        let f3 = impulses[NORMAL];
-        let (force_limit, twist_limit) = (self.friction * f3, self.twist_per_normal * f3);
-        if !(force_limit > 0.0 && twist_limit > 0.0) {
-            return None;
-        }
-        let (f1, f2) = (impulses[FRICTION_1], impulses[FRICTION_1 + 1]);
-        let about = (impulses[TWIST] - self.twist_midpoint(impulses)) * force_limit / twist_limit;
-        Some((
-            f1 * f1 + f2 * f2 + about * about,
-            force_limit * force_limit * (1.0 + 4.0 * f64::EPSILON),
-        ))
-    }
-
-    /// Scales the friction force and the twist about the centre of pressure back onto their
-    /// ellipsoid (direction kept: radial in `(f, τ′/r̄)`). `τ3 = τ′ + (p × f)·n` is linear in
-    /// `(f, τ′)` for a fixed `p`, so the three rows scale alike.
-    fn clamp_limit_surface(&self, impulses: &mut [f64]) {
-        match self.limit_surface(impulses) {
-            Some((squared, limit)) => {
-                if squared > limit {
-                    let f3 = impulses[NORMAL];
-                    let shrink = self.friction * f3 / squared.sqrt();
-                    for row in [FRICTION_1, FRICTION_1 + 1, TWIST] {
-                        impulses[row] *= shrink;
-                    }
-                }
-            }
-            None => {
-                let f3 = impulses[NORMAL];
-                self.cone.clamp(
-                    &mut impulses[FRICTION_1..FRICTION_1 + 2],
-                    self.friction * f3,
-                );
-                impulses[TWIST] = self.twist_midpoint(impulses);
-            }
-        }
+    /// The friction force's and the twist's one limit surface, when they share one
+    /// ([`FrictionLimit::Coupled`] with the circle, and not under the parallel-torque variant).
+    fn limit_surface(&self) -> Option<LimitSurface> {
+        (is_coupled(self.friction_limit, self.cone) && !self.remove_parallel_torque).then_some(
+            LimitSurface {
+                friction: self.friction,
+                twist_per_normal: self.twist_per_normal,
+                twist: TWIST,
+            },
+        )
     }
 
     fn clamp_zmp(&mut self, impulses: &mut [f64]) {
@@ -222,12 +183,12 @@ impl Projection for FaceProjection {
     #[inline]
     fn project(&mut self, impulses: &mut [f64], changed: usize) {
         impulses[NORMAL] = impulses[NORMAL].max(0.0);
-        if self.coupled() {
-            // The centre of pressure first: the twist's ellipsoid is about it.
+        if let Some(surface) = self.limit_surface() {
+            // The centre of pressure first: the ellipsoid is about it.
             if matches!(changed, NORMAL | TILT_1 | TILT_2) {
                 self.clamp_zmp(impulses);
             }
-            self.clamp_limit_surface(impulses);
+            surface.clamp(impulses, |λ| self.twist_midpoint(λ));
             return;
         }
         let f3 = impulses[NORMAL];
@@ -257,18 +218,11 @@ impl Projection for FaceProjection {
     /// The twist row, coupled to the friction pair by the limit surface, with `p` the centre of
     /// pressure relative to `G` (`G` itself when the twist is bounded there).
     fn twist_coupling(&self, impulses: &[f64]) -> Option<TwistCoupling> {
-        if !(self.coupled() && self.friction > 0.0 && self.twist_per_normal > 0.0) {
-            return None;
-        }
         let centre = match Self::centre_of_pressure(impulses) {
             Some(p) if self.twist_centre == TwistCentre::CentreOfPressure => [p.x, p.y],
             _ => [0.0, 0.0],
         };
-        Some(TwistCoupling {
-            row: TWIST,
-            radius: self.twist_per_normal / self.friction,
-            centre,
-        })
+        self.limit_surface()?.coupling(centre)
     }
 
     /// `f3`; without it the face carries no friction, twist or tilt.
@@ -294,15 +248,8 @@ impl Projection for FaceProjection {
             return impulses.iter().all(|&x| x == 0.0);
         };
         let f3 = impulses[NORMAL];
-        let within = if self.coupled() {
-            match self.limit_surface(impulses) {
-                Some((squared, limit)) => squared <= limit,
-                None => {
-                    self.cone
-                        .contains(&impulses[FRICTION_1..FRICTION_1 + 2], self.friction * f3)
-                        && impulses[TWIST] == self.twist_midpoint(impulses)
-                }
-            }
+        let within = if let Some(surface) = self.limit_surface() {
+            surface.contains(impulses, self.twist_midpoint(impulses))
         } else {
             let (low, high) = self.twist_bounds(impulses);
             self.cone
@@ -671,6 +618,7 @@ fn build_bearing(
             along,
             twist_centre: settings.twist_centre,
             cone: settings.friction_cone,
+            friction_limit: settings.friction_limit,
         }),
         None => ContactProjection::Face(FaceProjection {
             support: contact.support.clone(),
@@ -951,6 +899,7 @@ mod tests {
             along: Vector2::new(0.6, 0.8),
             cone: FrictionCone::Circle,
             twist_centre,
+            friction_limit: FrictionLimit::Separate,
         };
         for (twist_centre, centre) in [
             (TwistCentre::CentreOfPressure, 0.24),

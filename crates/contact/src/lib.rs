@@ -73,6 +73,7 @@ mod frame;
 pub mod grip;
 mod impulse;
 mod jacobian;
+mod limit_surface;
 mod material;
 mod model;
 pub mod patch;

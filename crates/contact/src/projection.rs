@@ -51,7 +51,8 @@ impl Projection for ContactProjection {
     fn twist_coupling(&self, impulses: &[f64]) -> Option<TwistCoupling> {
         match self {
             Self::Face(p) => p.twist_coupling(impulses),
-            Self::Point(_) | Self::Patch(_) | Self::Segment(_) | Self::Grip(_) => None,
+            Self::Segment(p) => p.twist_coupling(impulses),
+            Self::Point(_) | Self::Patch(_) | Self::Grip(_) => None,
         }
     }
 

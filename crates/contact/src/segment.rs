@@ -11,7 +11,8 @@
 //! searches ran per update, and a whole-block step never landed on the line, so a segment was
 //! always updated row by row. Here every bound is a box on one row (scaled by `f3`) — the
 //! twist's centred on the friction force's moment at the centre of pressure, as the face's
-//! ([`crate::TwistCentre`]) — a sticking segment is stepped whole like a face, and the
+//! ([`crate::TwistCentre`]), and by default friction and twist on one ellipsoid as the face's
+//! ([`crate::FrictionLimit`]) — a sticking segment is stepped whole like a face, and the
 //! admissible set is the same.
 //!
 //! Across steps the block is carried as the impulse it applied ([`crate::ContactImpulse`]):
@@ -19,10 +20,11 @@
 //! segment stays one (its ends swapped or clipped by other edges) or becomes a face or a point.
 
 use nalgebra::Vector2;
-use tatami_lcp::{LinearSet, Projection, RowBound};
+use tatami_lcp::{LinearSet, Projection, RowBound, TwistCoupling};
 
 use crate::face::{MIN_NORMAL_IMPULSE, twist_interval};
-use crate::{FrictionCone, TwistCentre};
+use crate::limit_surface::{LimitSurface, is_coupled};
+use crate::{FrictionCone, FrictionLimit, TwistCentre};
 
 /// Rows of a segment block.
 pub const ROWS: usize = 5;
@@ -49,6 +51,8 @@ pub struct SegmentProjection {
     pub twist_centre: TwistCentre,
     /// Box or circular friction bound.
     pub cone: FrictionCone,
+    /// Whether the friction force and the twist share one limit surface (with the circle).
+    pub friction_limit: FrictionLimit,
 }
 
 impl SegmentProjection {
@@ -63,6 +67,15 @@ impl SegmentProjection {
         let x = -impulses[TILT] / f3;
         let (f1, f2) = (impulses[FRICTION_1], impulses[FRICTION_1 + 1]);
         x * (self.along.x * f2 - self.along.y * f1)
+    }
+
+    /// The friction force's and the twist's one limit surface, when they share one.
+    fn limit_surface(&self) -> Option<LimitSurface> {
+        is_coupled(self.friction_limit, self.cone).then_some(LimitSurface {
+            friction: self.friction,
+            twist_per_normal: self.twist_per_normal,
+            twist: TWIST,
+        })
     }
 
     /// The twist's admissible interval ([`twist_interval`] about [`Self::twist_midpoint`]), as
@@ -81,9 +94,13 @@ impl Projection for SegmentProjection {
     fn project(&mut self, impulses: &mut [f64], _changed: usize) {
         impulses[NORMAL] = impulses[NORMAL].max(0.0);
         let f3 = impulses[NORMAL];
-        self.cone.clamp(&mut impulses[1..3], self.friction * f3);
         let tilt = self.half_length * f3;
         impulses[TILT] = impulses[TILT].max(-tilt).min(tilt);
+        if let Some(surface) = self.limit_surface() {
+            surface.clamp(impulses, |λ| self.twist_midpoint(λ));
+            return;
+        }
+        self.cone.clamp(&mut impulses[1..3], self.friction * f3);
         let (low, high) = self.twist_bounds(impulses);
         impulses[TWIST] = impulses[TWIST].max(low).min(high);
     }
@@ -91,6 +108,19 @@ impl Projection for SegmentProjection {
     #[inline]
     fn tangent_pair(&self) -> Option<usize> {
         self.cone.tangent_pair(FRICTION_1)
+    }
+
+    /// The twist row, coupled to the friction pair by the limit surface, with `p = x s` the
+    /// centre of pressure (`G` itself when the twist is bounded there).
+    fn twist_coupling(&self, impulses: &[f64]) -> Option<TwistCoupling> {
+        let f3 = impulses[NORMAL];
+        let x = if self.twist_centre == TwistCentre::CentreOfPressure && f3 > MIN_NORMAL_IMPULSE {
+            -impulses[TILT] / f3
+        } else {
+            0.0
+        };
+        self.limit_surface()?
+            .coupling([x * self.along.x, x * self.along.y])
     }
 
     /// `f3`; without it the segment carries no friction, tilt or twist.
@@ -107,12 +137,15 @@ impl Projection for SegmentProjection {
     fn admissible(&mut self, impulses: &[f64]) -> bool {
         let f3 = impulses[NORMAL];
         if f3 > MIN_NORMAL_IMPULSE {
-            self.cone
-                .contains(&impulses[FRICTION_1..FRICTION_1 + 2], self.friction * f3)
-                && impulses[TILT].abs() <= self.half_length * f3
-                && {
-                    let (low, high) = self.twist_bounds(impulses);
-                    (low..=high).contains(&impulses[TWIST])
+            impulses[TILT].abs() <= self.half_length * f3
+                && match self.limit_surface() {
+                    Some(surface) => surface.contains(impulses, self.twist_midpoint(impulses)),
+                    None => {
+                        let (low, high) = self.twist_bounds(impulses);
+                        self.cone
+                            .contains(&impulses[FRICTION_1..FRICTION_1 + 2], self.friction * f3)
+                            && (low..=high).contains(&impulses[TWIST])
+                    }
                 }
         } else {
             // Unloaded (or NaN): only the zero wrench is admissible.
@@ -148,7 +181,7 @@ impl Projection for SegmentProjection {
 mod tests {
     use super::*;
 
-    fn segment(cone: FrictionCone) -> SegmentProjection {
+    fn segment(cone: FrictionCone, friction_limit: FrictionLimit) -> SegmentProjection {
         SegmentProjection {
             friction: 0.5,
             twist_per_normal: 0.5 * 0.25,
@@ -156,12 +189,13 @@ mod tests {
             along: Vector2::new(0.6, 0.8),
             twist_centre: TwistCentre::CentreOfPressure,
             cone,
+            friction_limit,
         }
     }
 
     #[test]
     fn the_centre_of_pressure_stays_on_the_segment() {
-        let mut p = segment(FrictionCone::Circle);
+        let mut p = segment(FrictionCone::Circle, FrictionLimit::Separate);
         // f3 = 2: tilt within ±1, twist within ±0.25, friction within 1.
         let mut impulses = [2.0, 3.0, 4.0, -5.0, 0.1];
         p.project(&mut impulses, TILT);
@@ -176,7 +210,7 @@ mod tests {
 
     #[test]
     fn a_pulling_normal_leaves_nothing() {
-        let mut p = segment(FrictionCone::Box);
+        let mut p = segment(FrictionCone::Box, FrictionLimit::Coupled);
         let mut impulses = [-1.0, 3.0, -0.4, 0.2, 0.1];
         p.project(&mut impulses, NORMAL);
         assert_eq!(impulses, [0.0; 5]);
@@ -188,8 +222,13 @@ mod tests {
     /// and out of the set.
     #[test]
     fn admissible_is_where_the_projection_is_the_identity() {
-        for cone in [FrictionCone::Circle, FrictionCone::Box] {
-            let mut p = segment(cone);
+        let kinds = [
+            (FrictionCone::Circle, FrictionLimit::Coupled),
+            (FrictionCone::Circle, FrictionLimit::Separate),
+            (FrictionCone::Box, FrictionLimit::Coupled),
+        ];
+        for (cone, limit) in kinds {
+            let mut p = segment(cone, limit);
             let values = [-1.5, -0.6, -0.2, 0.0, 0.3, 0.9, 2.0];
             for f3 in [0.0, 0.5, 2.0] {
                 for f1 in values {
@@ -201,7 +240,7 @@ mod tests {
                             assert_eq!(
                                 p.admissible(&impulses),
                                 projected == impulses,
-                                "{impulses:?} ({cone:?})"
+                                "{impulses:?} ({cone:?}, {limit:?})"
                             );
                         }
                     }

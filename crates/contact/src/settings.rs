@@ -158,9 +158,9 @@ pub enum TwistCentre {
     Centroid,
 }
 
-/// How the face model bounds a face's friction force `f` and its twist `τ′` about the centre of
-/// pressure, with the isotropic [`FrictionCone::Circle`] (the box cone, the paper's, bounds them
-/// apart always).
+/// How the face model bounds a face's or a segment's friction force `f` and its twist `τ′`
+/// about the centre of pressure, with the isotropic [`FrictionCone::Circle`] (the box cone, the
+/// paper's, bounds them apart always).
 ///
 /// Decision record: friction acts at every point of a face, and a point slips one way at one
 /// speed, so a face that slides and spins shares one budget between the two: the exact bound is
@@ -239,7 +239,7 @@ pub struct ContactSettings {
     /// Face model: remove the part of the torque parallel to the force before the ZMP step (the
     /// paper's eq. 12 variant).
     pub remove_parallel_torque: bool,
-    /// Face model: a face's friction force and twist bounded together or apart
+    /// Face model: a face's or a segment's friction force and twist bounded together or apart
     /// ([`FrictionLimit`]).
     pub friction_limit: FrictionLimit,
 }
