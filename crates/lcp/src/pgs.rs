@@ -86,7 +86,7 @@ use std::ops::Range;
 use nalgebra::{Matrix6, Vector3, Vector6};
 
 use crate::island::BlockIslands;
-use crate::{Jacobian, LcpError, Problem, Projection, SolverBody};
+use crate::{Jacobian, LcpError, Problem, Projection, SolverBody, TwistCoupling};
 
 /// PGS sweeps per step. Default [`DEFAULT_ITERATIONS`] = 15 (the paper; Springhead's numIter).
 pub const DEFAULT_ITERATIONS: usize = 15;
@@ -800,32 +800,12 @@ fn update_block_rows<P: Projection, const ROWS: usize>(
                 .filter(|c| c.row > k + 1 && c.row < rows.len());
             coupled_twist = coupling.map(|c| c.row);
             match coupling {
-                // Exact line search along the limit surface's slip direction (module doc).
                 Some(c) => {
-                    let e3 = error(c.row, a, b);
-                    let [px, py] = c.centre;
-                    let slip = [e1 - py * e3, e2 + px * e3, c.radius * e3];
-                    let d = [
-                        -slip[0],
-                        -slip[1],
-                        -(c.radius * slip[2] + px * slip[1] - py * slip[0]),
-                    ];
-                    let r3 = &responses[c.row];
-                    let (k13, k23) = (
-                        along(&rows[c.row].jacobian, r1),
-                        along(&rows[c.row].jacobian, r2),
-                    );
-                    let curvature = r1.inverse_mass * d[0] * d[0]
-                        + r2.inverse_mass * d[1] * d[1]
-                        + r3.inverse_mass * d[2] * d[2]
-                        + 2.0 * (r1.coupling * d[0] * d[1] + k13 * d[0] * d[2] + k23 * d[1] * d[2]);
-                    if curvature > 0.0 {
-                        let step = relaxation
-                            * (slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2])
-                            / curvature;
-                        impulse[k] += step * d[0];
-                        impulse[k + 1] += step * d[1];
-                        impulse[c.row] += step * d[2];
+                    let e = [e1, e2, error(c.row, a, b)];
+                    let twist = (&rows[c.row].jacobian, &responses[c.row]);
+                    let step = twist_coupled_step(&c, e, (r1, r2), twist, relaxation);
+                    for (row, delta) in [k, k + 1, c.row].into_iter().zip(step) {
+                        impulse[row] += delta;
                     }
                 }
                 // Exact line search along −e on the quadratic ½ λᵀKλ + eᵀλ (module doc).
@@ -868,6 +848,40 @@ fn update_block_rows<P: Projection, const ROWS: usize>(
         row.impulse = new;
     }
     Ok(largest_change)
+}
+
+/// The step of a friction pair and the twist row coupled to it by a limit surface (`c`): the
+/// exact line search along the surface's slip direction (module doc). `e` are the three rows'
+/// velocity errors, `pair` the pair's responses, `twist` the twist row's Jacobian and
+/// response. Zero where no impulse moves them.
+fn twist_coupled_step(
+    c: &TwistCoupling,
+    e: [f64; 3],
+    pair: (&RowResponse, &RowResponse),
+    twist: (&Jacobian, &RowResponse),
+    relaxation: f64,
+) -> [f64; 3] {
+    let [px, py] = c.centre;
+    // The slip at the centre of pressure and r̄ times the spin: the ball's conjugate velocity.
+    let slip = [e[0] - py * e[2], e[1] + px * e[2], c.radius * e[2]];
+    // Along −slip in the ball's units, written in the rows: τ3 = τ′ + (p × f)·n.
+    let d = [
+        -slip[0],
+        -slip[1],
+        -(c.radius * slip[2] + px * slip[1] - py * slip[0]),
+    ];
+    let ((r1, r2), (j3, r3)) = (pair, twist);
+    let (k13, k23) = (along(j3, r1), along(j3, r2));
+    let curvature = r1.inverse_mass * d[0] * d[0]
+        + r2.inverse_mass * d[1] * d[1]
+        + r3.inverse_mass * d[2] * d[2]
+        + 2.0 * (r1.coupling * d[0] * d[1] + k13 * d[0] * d[2] + k23 * d[1] * d[2]);
+    if curvature <= 0.0 {
+        return [0.0; 3];
+    }
+    // −eᵀd = |slip|²: the quadratic's slope along d.
+    let step = relaxation * (slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]) / curvature;
+    d.map(|x| step * x)
 }
 
 /// Which body of a block the shock pass holds still.
