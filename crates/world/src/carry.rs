@@ -22,7 +22,7 @@ use crate::support::{CAP_VERTICES, LANDING_POINTS_PER_SIDE};
 
 /// Most slip of the bodies' surfaces against each other across a carried contact, as a
 /// fraction of the slop: 0.1 mm at the default 2 mm, far below the depths the solver tells
-/// apart. Measured on the piles (`benches/README.md`): 0.5 mm (and 0.3°) let the cube pile's
+/// apart. Measured on the piles (`benches/HISTORY.md`): 0.5 mm (and 0.3°) let the cube pile's
 /// last cubes creep on.
 const SLIP_PER_SLOP: f64 = 0.05;
 
