@@ -77,6 +77,7 @@ mod limit_surface;
 mod material;
 mod model;
 pub mod patch;
+pub mod planar_sliding;
 mod point_friction;
 mod projection;
 pub mod segment;

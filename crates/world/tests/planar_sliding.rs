@@ -2,9 +2,11 @@
 //! curling stone): its friction force and twist share one budget, so it stops sliding and
 //! spinning together, when per-point Coulomb friction summed over its uniformly pressed face
 //! stops it. The reference is that sum by brute force, over a grid of the face, integrated in
-//! small steps (the discs' closed form, Farkas et al. 2003, stops both together too).
+//! small steps ([`PressedFace`]; the discs' closed form, Farkas et al. 2003, stops both
+//! together too).
 
-use nalgebra::{Rotation2, UnitQuaternion, Vector2, Vector3};
+use nalgebra::{UnitQuaternion, Vector2, Vector3};
+use tatami_contact::planar_sliding::PressedFace;
 use tatami_world::{BodyDesc, Shape, World};
 
 const G: f64 = 9.8;
@@ -13,92 +15,6 @@ const MU: f64 = 0.3;
 const DT: f64 = 1.0 / 60.0;
 /// Sliding and spinning count as stopped below this speed (m/s; the spin at the rim).
 const STOPPED: f64 = 1e-3;
-
-/// A thin plate's pressed face, as grid points about its centre (body axes), and its moment
-/// of inertia about the normal per unit mass.
-struct Face {
-    points: Vec<Vector2<f64>>,
-    unit_inertia: f64,
-    /// Its largest radius: spin is measured at this rim.
-    rim: f64,
-}
-
-impl Face {
-    fn disc(radius: f64) -> Self {
-        let n = 48;
-        let points = grid(n, radius).filter(|p| p.norm() <= radius).collect();
-        Self {
-            points,
-            unit_inertia: radius * radius / 2.0,
-            rim: radius,
-        }
-    }
-
-    fn square(half: f64) -> Self {
-        Self {
-            points: grid(48, half).collect(),
-            unit_inertia: 2.0 * (2.0 * half) * (2.0 * half) / 12.0,
-            rim: half,
-        }
-    }
-
-    /// Friction force and torque per unit weight `μ m g` on the face turned by `angle`, moving
-    /// at `v` and spinning at `omega`: the mean of `−slip/|slip|` over its points.
-    fn friction(&self, angle: f64, v: Vector2<f64>, omega: f64) -> (Vector2<f64>, f64) {
-        let turn = Rotation2::new(angle);
-        let (mut force, mut torque) = (Vector2::zeros(), 0.0);
-        for p in &self.points {
-            let r = turn * p;
-            let slip = v + omega * Vector2::new(-r.y, r.x);
-            let norm = slip.norm();
-            if norm > 0.0 {
-                force -= slip / norm;
-                torque -= r.perp(&slip) / norm;
-            }
-        }
-        let n = self.points.len() as f64;
-        (force / n, torque / n)
-    }
-
-    /// When (s) the brute force stops sliding and stops spinning, from `v` and `omega`, in
-    /// steps of 0.2 ms (explicit Euler; a stopped motion stays stopped, the other's friction
-    /// having no part along it for a face symmetric about its centre).
-    fn stop_times(&self, mut v: Vector2<f64>, mut omega: f64) -> (f64, f64) {
-        let h = 2e-4;
-        let (mut angle, mut t) = (0.0, 0.0);
-        let (mut slide_stop, mut spin_stop) = (None, None);
-        while slide_stop.is_none() || spin_stop.is_none() {
-            let (force, torque) = self.friction(angle, v, omega);
-            if slide_stop.is_none() {
-                let next = v + force * (MU * G * h);
-                if next.dot(&v) <= 0.0 || next.norm() < STOPPED {
-                    slide_stop = Some(t);
-                    v = Vector2::zeros();
-                } else {
-                    v = next;
-                }
-            }
-            if spin_stop.is_none() {
-                let next = omega + torque * MU * G / self.unit_inertia * h;
-                if next * omega <= 0.0 || next.abs() * self.rim < STOPPED {
-                    spin_stop = Some(t);
-                    omega = 0.0;
-                } else {
-                    omega = next;
-                }
-            }
-            angle += omega * h;
-            t += h;
-        }
-        (slide_stop.unwrap_or(t), spin_stop.unwrap_or(t))
-    }
-}
-
-/// `n × n` cell centres over the square of half-width `half`.
-fn grid(n: usize, half: f64) -> impl Iterator<Item = Vector2<f64>> {
-    let at = move |i: usize| (i as f64 + 0.5) / n as f64 * 2.0 * half - half;
-    (0..n).flat_map(move |i| (0..n).map(move |j| Vector2::new(at(i), at(j))))
-}
 
 /// When (s) the engine's plate stops sliding and stops spinning, and whether its kinetic energy
 /// ever grew from one step to the next: a 1 kg plate of `shape`, 2 cm thick, turned by 0.4 rad
@@ -155,13 +71,22 @@ fn engine_stop_times(shape: Shape, v: Vector2<f64>, omega: f64) -> (f64, f64, bo
 fn a_sliding_spinning_face_stops_both_together_as_per_point_coulomb_does() {
     let heading = Vector2::new((2.2f64).cos(), (2.2f64).sin());
     for (name, shape, face) in [
-        ("disc", Shape::cylinder(0.1, 0.02), Face::disc(0.1)),
-        ("square", Shape::cuboid([0.2, 0.2, 0.02]), Face::square(0.1)),
+        (
+            "disc",
+            Shape::cylinder(0.1, 0.02),
+            PressedFace::disc(0.1, 48),
+        ),
+        (
+            "square",
+            Shape::cuboid([0.2, 0.2, 0.02]),
+            PressedFace::rectangle(0.1, 0.1, 48),
+        ),
     ] {
         for rim_speed in [0.5, 2.0, -2.0] {
             let (v, omega) = (heading, rim_speed / 0.1);
             let (slide, spin, gained) = engine_stop_times(shape.clone(), v, omega);
-            let (exact_slide, exact_spin) = face.stop_times(v, omega);
+            let exact = face.slide(MU * G, v, omega, 2e-4, 3.0);
+            let (exact_slide, exact_spin) = (exact.slide_stop.unwrap(), exact.spin_stop.unwrap());
             let case = format!(
                 "{name} at {rim_speed} m/s on the rim: slide {slide:.3} s and spin {spin:.3} s \
                  against {exact_slide:.3} and {exact_spin:.3} s"

@@ -15,6 +15,7 @@ mod holding;
 mod ledge;
 mod machine;
 mod pgs_error;
+mod planar_sliding;
 mod point_toppling;
 mod report;
 mod scenes;
@@ -154,6 +155,7 @@ pub fn run(args: &Args) -> Result<(), String> {
         Box::new(|| point_toppling::run(out, &progress)),
         Box::new(|| ledge::run(&plan.overhangs, out, &progress)),
         Box::new(|| spin_down::run(out, &progress)),
+        Box::new(|| planar_sliding::run(out, &progress)),
         Box::new(|| pgs_error::run(&plan.iterations, out, &progress)),
         Box::new(|| friction_isotropy::run(&plan.slide_angles, out, &progress)),
         Box::new(|| free_rotation::run(out, &progress)),

@@ -32,6 +32,8 @@ pub const LEDGE: SceneFile = scene_file!("ledge.json");
 pub const CUBE_SPIN: SceneFile = scene_file!("cube_spin.json");
 /// A standing cylinder spinning at 5 rad/s (spin-down).
 pub const CYLINDER_SPIN: SceneFile = scene_file!("cylinder_spin.json");
+/// A 0.1 m disc sliding at 1 m/s and spinning at 2 m/s at its rim (planar sliding).
+pub const SLIDING_SPIN: SceneFile = scene_file!("sliding_spin.json");
 /// A cube sliding at 5 m/s, 30° off the x axis (friction isotropy).
 pub const DIAGONAL_SLIDE: SceneFile = scene_file!("diagonal_slide.json");
 /// A 1×2×3 m box tumbling at ω = (1, 2, 3) rad/s in zero gravity (free rotation).
