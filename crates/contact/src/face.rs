@@ -143,14 +143,16 @@ impl FaceProjection {
         )
     }
 
-    /// The friction force's and the twist's one limit surface, when they share one
-    /// ([`FrictionLimit::Coupled`] with the circle, and not under the parallel-torque variant).
-    fn limit_surface(&self) -> Option<LimitSurface> {
+    /// The friction force's and the twist's one limit surface under the normal impulse `f3`,
+    /// when they share one ([`FrictionLimit::Coupled`] with the circle, and not under the
+    /// parallel-torque variant).
+    fn limit_surface(&self, f3: f64) -> Option<LimitSurface> {
         (is_coupled(self.friction_limit, self.cone) && !self.remove_parallel_torque).then_some(
             LimitSurface {
-                friction: self.friction,
-                twist_per_normal: self.twist_per_normal,
-                twist: TWIST,
+                force: self.friction * f3,
+                twist: self.twist_per_normal * f3,
+                friction_row: FRICTION_1,
+                twist_row: TWIST,
             },
         )
     }
@@ -183,7 +185,7 @@ impl Projection for FaceProjection {
     #[inline]
     fn project(&mut self, impulses: &mut [f64], changed: usize) {
         impulses[NORMAL] = impulses[NORMAL].max(0.0);
-        if let Some(surface) = self.limit_surface() {
+        if let Some(surface) = self.limit_surface(impulses[NORMAL]) {
             // The centre of pressure first: the ellipsoid is about it.
             if matches!(changed, NORMAL | TILT_1 | TILT_2) {
                 self.clamp_zmp(impulses);
@@ -222,7 +224,8 @@ impl Projection for FaceProjection {
             Some(p) if self.twist_centre == TwistCentre::CentreOfPressure => [p.x, p.y],
             _ => [0.0, 0.0],
         };
-        self.limit_surface()?.coupling(centre)
+        // Per unit normal impulse: `r̄` is the bounds' ratio whatever the load.
+        self.limit_surface(1.0)?.coupling(centre)
     }
 
     /// `f3`; without it the face carries no friction, twist or tilt.
@@ -248,7 +251,7 @@ impl Projection for FaceProjection {
             return impulses.iter().all(|&x| x == 0.0);
         };
         let f3 = impulses[NORMAL];
-        let within = if let Some(surface) = self.limit_surface() {
+        let within = if let Some(surface) = self.limit_surface(f3) {
             surface.contains(impulses, self.twist_midpoint(impulses))
         } else {
             let (low, high) = self.twist_bounds(impulses);

@@ -14,8 +14,10 @@
 //! What the grip adds is the friction `p` bears, not `p` itself (the position pass still
 //! pushes the overlap out, without speed): a block of two friction rows at `G` bounded by
 //! `μ p`, and a twist row bounded by `μ r̄ p` where the support has area or length, beside the
-//! model's own blocks. Their friction adds to the model's `μ f3`, and the sum of two discs is
-//! the disc of the summed radius: the contact's friction is bounded by `μ (f3 + p)`.
+//! model's own blocks — by default force and twist on one ball, as the face's
+//! ([`crate::FrictionLimit`]). Their friction adds to the model's `μ f3`, and the sum of two
+//! discs (or balls of one `r̄`) is the disc (ball) of the summed radius: the contact's friction
+//! is bounded by `μ (f3 + p)`.
 //!
 //! ```
 //! use nalgebra::{Point2, Point3, Vector3};
@@ -53,10 +55,11 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use tatami_lcp::{Block, LinearSet, Problem, Projection, Row, RowBound};
+use tatami_lcp::{Block, LinearSet, Problem, Projection, Row, RowBound, TwistCoupling};
 
 use crate::jacobian::{angular_jacobian, block_friction_motion, point_jacobian};
-use crate::{Contact, ContactProjection, ContactSettings, FrictionCone};
+use crate::limit_surface::{LimitSurface, is_coupled};
+use crate::{Contact, ContactProjection, ContactSettings, FrictionCone, FrictionLimit};
 
 /// The projection of a grip's rows: friction `[f1, f2]` within `friction` (the cone's shape
 /// from the settings), then, if the block has it, a twist within `±twist`.
@@ -71,6 +74,9 @@ pub struct GripProjection {
     pub twist: f64,
     /// Box or circular friction bound.
     pub cone: FrictionCone,
+    /// Whether the friction force and the twist share one limit surface (with the circle), as
+    /// a face's ([`crate::FrictionLimit`]).
+    pub friction_limit: FrictionLimit,
 }
 
 impl GripProjection {
@@ -86,9 +92,27 @@ impl GripProjection {
 /// The twist row's index in a grip's block, when it has one.
 const TWIST: usize = 2;
 
+impl GripProjection {
+    /// The friction force's and the twist's one limit surface, when they share one and the
+    /// block of `rows` rows has a twist row. About the support's centroid, where the grip's
+    /// rows act: the press has no centre of its own.
+    fn limit_surface(&self, rows: usize) -> Option<LimitSurface> {
+        (is_coupled(self.friction_limit, self.cone) && rows > TWIST).then_some(LimitSurface {
+            force: self.friction,
+            twist: self.twist,
+            friction_row: 0,
+            twist_row: TWIST,
+        })
+    }
+}
+
 impl Projection for GripProjection {
     #[inline]
     fn project(&mut self, impulses: &mut [f64], _changed: usize) {
+        if let Some(surface) = self.limit_surface(impulses.len()) {
+            surface.clamp(impulses, |_| 0.0);
+            return;
+        }
         self.cone.clamp(&mut impulses[..2], self.friction);
         if let Some(twist) = impulses.get_mut(TWIST) {
             *twist = twist.max(-self.twist).min(self.twist);
@@ -98,6 +122,10 @@ impl Projection for GripProjection {
     #[inline]
     fn tangent_pair(&self) -> Option<usize> {
         self.cone.tangent_pair(0)
+    }
+
+    fn twist_coupling(&self, impulses: &[f64]) -> Option<TwistCoupling> {
+        self.limit_surface(impulses.len())?.coupling([0.0, 0.0])
     }
 
     /// Fixed bounds, a product of row bounds but for the circular cone.
@@ -209,6 +237,7 @@ pub fn build(
             friction: mu * press,
             twist: mu * twist_radius * press,
             cone: settings.friction_cone,
+            friction_limit: settings.friction_limit,
         }),
     });
     true
@@ -218,9 +247,10 @@ pub fn build(
 mod tests {
     use super::*;
 
-    /// The direct solver's set and the PGS projection bound the same impulses: every corner of
-    /// the set (one generator spending its whole budget, for each cone) is left alone by the
-    /// projection, and the projection of impulses far outside lands on the bounds.
+    /// With the bounds apart, the direct solver's set and the PGS projection bound the same
+    /// impulses: every corner of the set (one generator spending its whole budget, for each
+    /// cone) is left alone by the projection, and the projection of impulses far outside lands
+    /// on the bounds.
     #[test]
     fn the_linear_set_and_the_projection_bound_alike() {
         for cone in [FrictionCone::Box, FrictionCone::Circle] {
@@ -229,6 +259,7 @@ mod tests {
                 friction: 0.3,
                 twist: 0.02,
                 cone,
+                friction_limit: FrictionLimit::Separate,
             };
             let set = grip.linear_set(3).expect("a grip has a linear set");
             for budget in &set.budgets {
@@ -259,5 +290,37 @@ mod tests {
             );
             assert_eq!(far[2], -0.02, "{cone:?}: the twist at its bound");
         }
+    }
+
+    /// With the force and the twist on one ball (the default), impulses far outside are scaled
+    /// onto it along their own direction in `(f1, f2, τ/r̄)`, `r̄ = 0.02 / 0.3`; inside, left
+    /// alone; without a twist row, the disc.
+    #[test]
+    fn a_coupled_grip_scales_force_and_twist_together() {
+        let mut grip = GripProjection {
+            press: 0.6,
+            friction: 0.3,
+            twist: 0.02,
+            cone: FrictionCone::Circle,
+            friction_limit: FrictionLimit::Coupled,
+        };
+        let r_bar = 0.02 / 0.3;
+        let ball = |x: &[f64; 3]| (x[0].powi(2) + x[1].powi(2) + (x[2] / r_bar).powi(2)).sqrt();
+        let far = [3.0, -4.0, -1.0];
+        let mut projected = far;
+        grip.project(&mut projected, 0);
+        assert!((ball(&projected) - 0.3).abs() < 1e-15, "{projected:?}");
+        for k in 0..3 {
+            assert!((projected[k] / far[k] - 0.3 / ball(&far)).abs() < 1e-15);
+        }
+        let inside = [0.1, 0.1, 0.01];
+        let mut kept = inside;
+        grip.project(&mut kept, 0);
+        assert_eq!(kept, inside);
+        let mut pair = [3.0, -4.0];
+        grip.project(&mut pair, 0);
+        assert!((pair[0].hypot(pair[1]) - 0.3).abs() < 1e-15);
+        assert_eq!(grip.twist_coupling(&pair), None);
+        assert!(grip.twist_coupling(&far).is_some());
     }
 }

@@ -52,7 +52,8 @@ impl Projection for ContactProjection {
         match self {
             Self::Face(p) => p.twist_coupling(impulses),
             Self::Segment(p) => p.twist_coupling(impulses),
-            Self::Point(_) | Self::Patch(_) | Self::Grip(_) => None,
+            Self::Grip(p) => p.twist_coupling(impulses),
+            Self::Point(_) | Self::Patch(_) => None,
         }
     }
 

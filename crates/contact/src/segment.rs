@@ -69,12 +69,14 @@ impl SegmentProjection {
         x * (self.along.x * f2 - self.along.y * f1)
     }
 
-    /// The friction force's and the twist's one limit surface, when they share one.
-    fn limit_surface(&self) -> Option<LimitSurface> {
+    /// The friction force's and the twist's one limit surface under the normal impulse `f3`,
+    /// when they share one.
+    fn limit_surface(&self, f3: f64) -> Option<LimitSurface> {
         is_coupled(self.friction_limit, self.cone).then_some(LimitSurface {
-            friction: self.friction,
-            twist_per_normal: self.twist_per_normal,
-            twist: TWIST,
+            force: self.friction * f3,
+            twist: self.twist_per_normal * f3,
+            friction_row: FRICTION_1,
+            twist_row: TWIST,
         })
     }
 
@@ -96,7 +98,7 @@ impl Projection for SegmentProjection {
         let f3 = impulses[NORMAL];
         let tilt = self.half_length * f3;
         impulses[TILT] = impulses[TILT].max(-tilt).min(tilt);
-        if let Some(surface) = self.limit_surface() {
+        if let Some(surface) = self.limit_surface(f3) {
             surface.clamp(impulses, |λ| self.twist_midpoint(λ));
             return;
         }
@@ -119,7 +121,8 @@ impl Projection for SegmentProjection {
         } else {
             0.0
         };
-        self.limit_surface()?
+        // Per unit normal impulse: `r̄` is the bounds' ratio whatever the load.
+        self.limit_surface(1.0)?
             .coupling([x * self.along.x, x * self.along.y])
     }
 
@@ -138,7 +141,7 @@ impl Projection for SegmentProjection {
         let f3 = impulses[NORMAL];
         if f3 > MIN_NORMAL_IMPULSE {
             impulses[TILT].abs() <= self.half_length * f3
-                && match self.limit_surface() {
+                && match self.limit_surface(f3) {
                     Some(surface) => surface.contains(impulses, self.twist_midpoint(impulses)),
                     None => {
                         let (low, high) = self.twist_bounds(impulses);
