@@ -251,4 +251,34 @@ mod tests {
             }
         }
     }
+    /// The coupled limit surface by hand: `f3 = 2`, `μ = 0.5` (`|f| ≤ 1`), `μ r̄ = 0.125`
+    /// (`r̄ = 0.25`), the centre of pressure `x = −τu / f3 = 0.25` along `s = (0.6, 0.8)` and
+    /// friction `(0.6, 0)`, whose moment there is `0.25 (0.6 · 0 − 0.8 · 0.6) = −0.12`: the
+    /// twist about it may be `±0.25 √(1 − 0.6²) = ±0.2`, so `τ3 ∈ [−0.32, 0.08]` stands; `τ3 =
+    /// 0.88` (1.0 about it, `τ′/r̄ = 4`) is scaled onto the ball with the force, by `1/√16.36`.
+    #[test]
+    fn a_segments_force_and_twist_share_one_ellipsoid() {
+        let mut p = segment(FrictionCone::Circle, FrictionLimit::Coupled);
+        for (twist, stands) in [
+            (-0.33, false),
+            (-0.32, true),
+            (0.0, true),
+            (0.08, true),
+            (0.09, false),
+        ] {
+            assert_eq!(
+                p.admissible(&[2.0, 0.6, 0.0, -0.5, twist]),
+                stands,
+                "{twist}"
+            );
+        }
+        let mut impulses = [2.0, 0.6, 0.0, -0.5, 0.88];
+        p.project(&mut impulses, TWIST);
+        let shrink = 1.0 / 16.36f64.sqrt();
+        let expected = [2.0, 0.6 * shrink, 0.0, -0.5, 0.88 * shrink];
+        for (got, want) in impulses.iter().zip(expected) {
+            assert!((got - want).abs() < 1e-15, "{impulses:?}");
+        }
+        assert!(p.admissible(&impulses));
+    }
 }
