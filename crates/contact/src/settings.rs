@@ -170,7 +170,7 @@ pub enum TwistCentre {
 /// along `(f, τ′/r̄)`. Bounded apart (`|f| ≤ μ f3`, `|τ′| ≤ μ r̄ f3`) a face sliding and spinning
 /// gets both bounds at once: a 0.1 m puck on μ 0.3 at 1 m/s spinning at ωR = 2 m/s stopped
 /// sliding at 0.34 s and spinning at 0.51 s, where per-point Coulomb friction integrated over
-/// its uniformly pressed disc stops both together at 0.647 s. On the ellipsoid the face model
+/// its uniformly pressed disc stops both together at 0.648 s. On the ellipsoid the face model
 /// stops both together at 0.617 s (60 Hz; the ellipsoid's own equations of motion: 0.613 s),
 /// a 0.2 m square plate at 0.683/0.700 s against 0.715 s (`tatami-world`'s
 /// `tests/planar_sliding.rs`).

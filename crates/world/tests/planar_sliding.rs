@@ -64,7 +64,7 @@ fn engine_stop_times(shape: Shape, v: Vector2<f64>, omega: f64) -> (f64, f64, bo
 /// spinning at 0.5 to 2 times that at their rim, either way, under the default settings:
 /// they stop sliding and spinning within one step of each other, within 10% of per-point
 /// Coulomb friction's stop — the ellipsoidal limit surface is 5–7% quicker than the exact one
-/// for these faces (measured: disc 0.613 against 0.647 s at twice the speed at the rim),
+/// for these faces (measured: disc 0.613 against 0.648 s at twice the speed at the rim),
 /// one step of 1/60 s is 3–5% of these stops — and their energy never grows. Bounded apart,
 /// the force and the twist stopped the disc sliding at 0.34 s and spinning at 0.51 s.
 #[test]
