@@ -159,8 +159,8 @@ pub enum TwistCentre {
 }
 
 /// How the face model bounds a face's or a segment's friction force `f` and its twist `τ′`
-/// about the centre of pressure, with the isotropic [`FrictionCone::Circle`] (the box cone, the
-/// paper's, bounds them apart always).
+/// about the centre of pressure, and a grip its own ([`crate::grip`]), with the isotropic
+/// [`FrictionCone::Circle`] (the box cone, the paper's, bounds them apart always).
 ///
 /// Decision record: friction acts at every point of a face, and a point slips one way at one
 /// speed, so a face that slides and spins shares one budget between the two: the exact bound is
