@@ -60,13 +60,22 @@ impl SegmentProjection {
     /// the face's ([`crate::face::FaceProjection::twist_midpoint`]): about the centre of pressure
     /// `x s` (`x = −τu / f3`), the friction force's moment there, `x (s × f)·n`; about `G`, 0.
     pub fn twist_midpoint(&self, impulses: &[f64]) -> f64 {
-        let f3 = impulses[NORMAL];
-        if self.twist_centre == TwistCentre::Centroid || f3 <= MIN_NORMAL_IMPULSE {
+        let Some(x) = self.twist_lever(impulses) else {
             return 0.0;
-        }
-        let x = -impulses[TILT] / f3;
+        };
         let (f1, f2) = (impulses[FRICTION_1], impulses[FRICTION_1 + 1]);
         x * (self.along.x * f2 - self.along.y * f1)
+    }
+
+    /// `x = −τu / f3`, where along the segment the twist is bounded about: the centre of
+    /// pressure; `None` where that is `G` ([`TwistCentre::Centroid`], or no load).
+    fn twist_lever(&self, impulses: &[f64]) -> Option<f64> {
+        let f3 = impulses[NORMAL];
+        if self.twist_centre == TwistCentre::Centroid || f3 <= MIN_NORMAL_IMPULSE {
+            return None;
+        }
+        // A NaN load reads through, to be reported.
+        Some(-impulses[TILT] / f3)
     }
 
     /// The friction force's and the twist's one limit surface under the normal impulse `f3`,
@@ -115,12 +124,7 @@ impl Projection for SegmentProjection {
     /// The twist row, coupled to the friction pair by the limit surface, with `p = x s` the
     /// centre of pressure (`G` itself when the twist is bounded there).
     fn twist_coupling(&self, impulses: &[f64]) -> Option<TwistCoupling> {
-        let f3 = impulses[NORMAL];
-        let x = if self.twist_centre == TwistCentre::CentreOfPressure && f3 > MIN_NORMAL_IMPULSE {
-            -impulses[TILT] / f3
-        } else {
-            0.0
-        };
+        let x = self.twist_lever(impulses).unwrap_or(0.0);
         // Per unit normal impulse: `r̄` is the bounds' ratio whatever the load.
         self.limit_surface(1.0)?
             .coupling([x * self.along.x, x * self.along.y])

@@ -51,7 +51,7 @@ fn closed_form(scene: &Scene) -> Result<f64, String> {
     let [ground, cube] = scene.bodies.as_slice() else {
         return Err("the slide scene has a ground and one cube".to_owned());
     };
-    let mu = 0.5 * (ground.kinetic_friction + cube.kinetic_friction);
+    let mu = scenes::kinetic_friction(ground, cube);
     Ok(cube.velocity.norm_squared() / (2.0 * mu * scene.gravity.norm()))
 }
 

@@ -54,6 +54,11 @@ impl Case {
     }
 }
 
+/// A time to the millisecond followed by `unit`, or a dash for none.
+fn seconds(t: Option<f64>, unit: &str) -> String {
+    t.map_or("—".to_owned(), |t| format!("{t:.3}{unit}"))
+}
+
 /// The scene's disc radius, friction coefficient and gravity.
 fn disc_of(scene: &Scene) -> Result<(f64, f64, f64), String> {
     let [floor, disc] = scene.bodies.as_slice() else {
@@ -62,7 +67,7 @@ fn disc_of(scene: &Scene) -> Result<(f64, f64, f64), String> {
     let Shape::Cylinder { radius, .. } = disc.shape else {
         return Err("the sliding body is a cylinder standing on its cap".to_owned());
     };
-    let mu = 0.5 * (floor.kinetic_friction + disc.kinetic_friction);
+    let mu = scenes::kinetic_friction(floor, disc);
     Ok((radius, mu, scene.gravity.norm()))
 }
 
@@ -226,12 +231,11 @@ pub fn run(out: &std::path::Path, progress: &Progress) -> Result<Outcome, String
         for (n, (&v, &w)) in c.speed.iter().zip(&c.rim_speed).enumerate() {
             trace.record(record![c.name, n, times[n], v, w])?;
         }
-        let seconds = |t: Option<f64>| t.map_or("—".to_owned(), |t| format!("{t:.3}"));
         rows.push_str(&format!(
             "| {} | {} | {} | {} |\n",
             c.name,
-            seconds(slide),
-            seconds(spin),
+            seconds(slide, ""),
+            seconds(spin, ""),
             ratio.map_or("—".to_owned(), |r| format!("{r:.3}")),
         ));
     }
@@ -241,15 +245,14 @@ pub fn run(out: &std::path::Path, progress: &Progress) -> Result<Outcome, String
     let face = &cases[0];
     let (face_slide, face_spin) = face.stops(scene.dt);
     let apart = cases[1].stops(scene.dt);
-    let seconds = |t: Option<f64>| t.map_or("—".to_owned(), |t| format!("{t:.3} s"));
     let summary = match (face_slide, face_spin, reference_stop) {
         (Some(slide), Some(spin), Some(reference)) => format!(
             "face model stops sliding and spinning {} apart, {:.1}% before per-point Coulomb's \
              {reference:.3} s; bounds apart: slide {}, spin {}",
-            seconds(Some((slide - spin).abs())),
+            seconds(Some((slide - spin).abs()), " s"),
             (1.0 - slide.max(spin) / reference) * 100.0,
-            seconds(apart.0),
-            seconds(apart.1),
+            seconds(apart.0, " s"),
+            seconds(apart.1, " s"),
         ),
         _ => "the face model's disc did not stop within the run".to_owned(),
     };

@@ -104,6 +104,12 @@ pub fn run_paper(
     Ok(world)
 }
 
+/// The kinetic friction coefficient between two bodies of a scene: the mean of theirs, as the
+/// engine pairs them (`tatami-world`'s `collision::combine`).
+pub fn kinetic_friction(a: &tatami_world::BodyDesc, b: &tatami_world::BodyDesc) -> f64 {
+    0.5 * (a.kinetic_friction + b.kinetic_friction)
+}
+
 /// The edge length of a cubic box shape, if `shape` is one.
 pub fn cube_side(shape: &tatami_world::Shape) -> Option<f64> {
     match shape {

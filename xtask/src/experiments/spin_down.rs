@@ -34,7 +34,7 @@ fn closed_form(scene: &Scene) -> Result<f64, String> {
     let [ground, body] = scene.bodies.as_slice() else {
         return Err("spin scenes have a ground and one body".to_owned());
     };
-    let mu = 0.5 * (ground.kinetic_friction + body.kinetic_friction);
+    let mu = scenes::kinetic_friction(ground, body);
     let g = scene.gravity.norm();
     match &body.shape {
         shape @ Shape::Box { .. } => {
