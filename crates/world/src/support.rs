@@ -619,9 +619,10 @@ pub(crate) fn support(
         _ => overlap(&surface_a, &surface_b),
     };
     if points.is_empty() {
-        // Touching only at the boundary within rounding: the nearest point of A's outline.
-        let hull = |s: &Surface| ConvexPolygon::from_points(&s.outline).ok();
-        points.push(hull(&surface_a)?.nearest_point(&hull(&surface_b)?.centroid()));
+        // Touching only at the boundary within rounding, or just missing each other (edges
+        // crossing a hair beyond an end, as a normal found to within GJK's accuracy leaves
+        // them): where they come nearest.
+        points.push(nearest_of_a(&surface_a.outline, &surface_b.outline)?);
     }
     let polygon = ConvexPolygon::from_points(&points).ok()?;
     depths.clear();
@@ -922,6 +923,33 @@ fn least_squares_plane(
     ))
 }
 
+/// The point of outline `a` nearest to outline `b` (each a point, a segment or a convex
+/// polygon, its vertices in any order): two convex sets come nearest at a vertex of one, so
+/// the nearest of `a`'s points to `b`'s vertices, and of `a`'s vertices to `b`. `None` for an
+/// outline without a hull (no finite points).
+fn nearest_of_a(a: &[Point2<f64>], b: &[Point2<f64>]) -> Option<Point2<f64>> {
+    let (hull_a, hull_b) = (
+        ConvexPolygon::from_points(a).ok()?,
+        ConvexPolygon::from_points(b).ok()?,
+    );
+    let towards_b = hull_b
+        .vertices()
+        .iter()
+        .map(|v| (hull_a.nearest_point(v), *v));
+    let towards_a = hull_a
+        .vertices()
+        .iter()
+        .map(|u| (*u, hull_b.nearest_point(u)));
+    towards_b
+        .chain(towards_a)
+        .min_by(|x, y| {
+            (x.0 - x.1)
+                .norm_squared()
+                .total_cmp(&(y.0 - y.1).norm_squared())
+        })
+        .map(|(on_a, _)| on_a)
+}
+
 /// The overlap of two features' outlines (points, segments or polygons), as unordered points.
 fn overlap(a: &Surface, b: &Surface) -> Points<Point2<f64>> {
     let (a_points, b_points) = (&a.outline[..], &b.outline[..]);
@@ -1214,6 +1242,39 @@ mod tests {
             // Parallel within the edges' tolerance: the common part, as for edges.
             let (a, b) = (line(0.0, 0.45, c.coords), line(0.005, 0.3, c.coords));
             assert_eq!(side_lines_overlap(&a, &b, ra, rb), segment_overlap(&a, &b));
+        }
+    }
+
+    /// Two edges whose outlines just miss each other — B's crosses the line of A's a hair
+    /// beyond A's end, at 3°, rising at 5% as it goes on — touch at A's end, as they do when
+    /// the crossing falls a hair short of it: the contact does not jump as the crossing passes
+    /// the end. (The normal of a lying cylinder's side against a hull's edge, found by GJK to
+    /// within 1e-4 rad, moved such a crossing past the end, and the contact went from 3 to
+    /// 5.3 mm apart, beyond the margin, and was dropped.)
+    #[test]
+    fn edges_missing_each_other_by_a_hair_touch_at_the_end() {
+        let (alpha, gap) = (3.0_f64.to_radians(), 0.003);
+        let a = numbered(vec![
+            Point3::new(-1.0, 0.0, gap),
+            Point3::new(1.0, 0.0, gap),
+        ]);
+        for beyond in [-1e-6, 1e-6, 1e-3] {
+            let crossing = Point3::new(1.0 + beyond, 0.0, 0.0);
+            let along = Vector3::new(alpha.cos(), alpha.sin(), 0.05);
+            let b = numbered(vec![crossing - along * 2.0, crossing + along * 0.5]);
+            let s = named_on_z(&a, &b);
+            assert_eq!(s.polygon.kind(), PolygonKind::Point, "{beyond}");
+            let at = s.frame.to_world(&s.polygon.vertices()[0]);
+            // Within a millimetre of the crossing B's edge is within 0.05 mm of its height there.
+            assert!(
+                (at.xy() - Point2::new(1.0, 0.0)).norm() < 1e-5,
+                "{beyond}: at {at}"
+            );
+            assert!(
+                (s.depths[0] + gap).abs() < 1e-4,
+                "{beyond}: {}",
+                s.depths[0]
+            );
         }
     }
 
