@@ -1246,36 +1246,45 @@ mod tests {
     }
 
     /// Two edges whose outlines just miss each other — B's crosses the line of A's a hair
-    /// beyond A's end, at 3°, rising at 5% as it goes on — touch at A's end, as they do when
-    /// the crossing falls a hair short of it: the contact does not jump as the crossing passes
-    /// the end. (The normal of a lying cylinder's side against a hull's edge, found by GJK to
-    /// within 1e-4 rad, moved such a crossing past the end, and the contact went from 3 to
-    /// 5.3 mm apart, beyond the margin, and was dropped.)
+    /// beyond A's end — touch at A's end, as they do when the crossing falls a hair short of
+    /// it: the contact does not jump as the crossing passes the end. Turned anywhere in the
+    /// plane, at 2° to 90° between the edges, each rising or falling along itself, B up to 5 mm
+    /// below A at the crossing. (The normal of a lying cylinder's side against a hull's edge,
+    /// found by GJK to within 1e-4 rad, moved such a crossing past the end, and the contact
+    /// went from 3 to 5.3 mm apart, beyond the margin, and was dropped: the point taken was
+    /// A's nearest to B's middle.)
     #[test]
     fn edges_missing_each_other_by_a_hair_touch_at_the_end() {
-        let (alpha, gap) = (3.0_f64.to_radians(), 0.003);
-        let a = numbered(vec![
-            Point3::new(-1.0, 0.0, gap),
-            Point3::new(1.0, 0.0, gap),
-        ]);
-        for beyond in [-1e-6, 1e-6, 1e-3] {
-            let crossing = Point3::new(1.0 + beyond, 0.0, 0.0);
-            let along = Vector3::new(alpha.cos(), alpha.sin(), 0.05);
-            let b = numbered(vec![crossing - along * 2.0, crossing + along * 0.5]);
-            let s = named_on_z(&a, &b);
-            assert_eq!(s.polygon.kind(), PolygonKind::Point, "{beyond}");
-            let at = s.frame.to_world(&s.polygon.vertices()[0]);
-            // Within a millimetre of the crossing B's edge is within 0.05 mm of its height there.
-            assert!(
-                (at.xy() - Point2::new(1.0, 0.0)).norm() < 1e-5,
-                "{beyond}: at {at}"
-            );
-            assert!(
-                (s.depths[0] + gap).abs() < 1e-4,
-                "{beyond}: {}",
-                s.depths[0]
-            );
-        }
+        use proptest::prelude::*;
+        proptest!(ProptestConfig::with_cases(256), |(
+            turn in -3.2..3.2f64,
+            degrees in 2.0..90.0f64,
+            (slope_a, slope_b) in (-0.2..0.2f64, -0.2..0.2f64),
+            gap in 0.0..0.005f64,
+        )| {
+            let twist = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), turn);
+            let a = numbered(vec![
+                Point3::from(twist * Vector3::new(-1.0, 0.0, gap - slope_a)),
+                Point3::from(twist * Vector3::new(1.0, 0.0, gap + slope_a)),
+            ]);
+            let end = twist * Vector3::new(1.0, 0.0, 0.0);
+            let alpha = degrees.to_radians();
+            let along = twist * Vector3::new(alpha.cos(), alpha.sin(), slope_b);
+            let touching = [-1e-7, 1e-7].map(|beyond| {
+                // B crosses A's line `beyond` past A's end, `gap` below A there (to first order).
+                let crossing = Point3::from(end * (1.0 + beyond)) + Vector3::z() * slope_a;
+                let b = numbered(vec![crossing - along, crossing + along * 0.5]);
+                let s = named_on_z(&a, &b);
+                let at = s.frame.to_world(&s.polygon.vertices()[0]);
+                (s.polygon.kind(), at, s.depths[0])
+            });
+            for (kind, at, depth) in touching {
+                prop_assert_eq!(kind, PolygonKind::Point);
+                // Within 1e-7 of the end, B's edge is within 1e-7 × its slope of `gap` below A.
+                prop_assert!((at.xy() - Point2::from(end.xy())).norm() < 1e-6, "at {}", at);
+                prop_assert!((depth + gap).abs() < 1e-6, "{} for a gap of {}", depth, gap);
+            }
+        });
     }
 
     #[test]
