@@ -754,4 +754,76 @@ mod tests {
             "{moved} of {compared} moved"
         );
     }
+
+    /// A cylinder and a box, a ball or another cylinder, turned at random and placed 0.1 to 4
+    /// mm apart (within the 5 mm margin) along a random direction, either body first: the pair
+    /// has a contact, and its deepest point reads their distance (parry's, on the true shapes)
+    /// within 10 µm — GJK's normal of shapes apart, and the planes and lines of caps, sides and
+    /// faces, are exact to rounding. Near a rim the rounded cylinder's normal leaned off the true
+    /// one by up to 18°, and the contact read up to 4.2 mm closer than the shapes were: in
+    /// beyond the slop where they stood 1.9 mm apart.
+    #[test]
+    fn a_cylinder_apart_within_the_margin_reads_its_gap() {
+        use crate::parry_bridge::tests::sharp_distance;
+        use nalgebra::{Quaternion, Unit};
+        let mut random = Random::new(5);
+        for case in 0..600 {
+            // A cylinder (kind 2 of `mixed_shape`) and a box, a ball or a cylinder, in turn.
+            let other = mixed_shape(&mut random, case % 3);
+            let cylinder = mixed_shape(&mut random, 2);
+            let shapes = if case % 2 == 0 {
+                [cylinder, other]
+            } else {
+                [other, cylinder]
+            };
+            let mut c = || random.between(-1.0, 1.0);
+            let turns = [(); 2]
+                .map(|()| UnitQuaternion::from_quaternion(Quaternion::new(c(), c(), c(), c())));
+            let towards = Unit::new_normalize(Vector3::new(c(), c(), c()));
+            let gap = random.between(1e-4, 4e-3);
+            let placed = |offset: f64| {
+                World::builder()
+                    .gravity([0.0; 3])
+                    .body(BodyDesc::dynamic(shapes[0].clone()).rotation(turns[0]))
+                    .body(
+                        BodyDesc::dynamic(shapes[1].clone())
+                            .rotation(turns[1])
+                            .position((towards.into_inner() * offset).into()),
+                    )
+                    .build()
+                    .expect("a valid scene")
+            };
+            let distance = |world: &World| {
+                let poses = poses_of(world);
+                let colliders = [0, 1].map(|k| &world.geometry[k].collider);
+                sharp_distance(colliders[0], &poses[0], colliders[1], &poses[1])
+            };
+            // The distance grows with the offset once apart: bisection to `gap`.
+            let (mut near, mut far) = (0.0, 4.0);
+            for _ in 0..60 {
+                let offset = 0.5 * (near + far);
+                if distance(&placed(offset)) < gap {
+                    near = offset;
+                } else {
+                    far = offset;
+                }
+            }
+            let mut world = placed(far);
+            let apart = distance(&world);
+            world.prepare_step(1.0 / 60.0).expect("collision");
+            let contact = world
+                .contacts()
+                .next()
+                .unwrap_or_else(|| panic!("case {case}: no contact"));
+            let deepest = contact
+                .depths
+                .iter()
+                .copied()
+                .fold(f64::NEG_INFINITY, f64::max);
+            assert!(
+                (deepest + apart).abs() < 1e-5,
+                "case {case}: {apart} m apart, the contact reads {deepest} m deep"
+            );
+        }
+    }
 }
