@@ -481,7 +481,24 @@ fn contact_of(
                 let bands = (landing_band, turn_band);
                 outline.landing(&origin, &rotation, &outward, bands, feature);
             }
-            support(&features.a, &features.b, normal, depths, ids)
+            let mut s = support(&features.a, &features.b, normal, depths, ids)?;
+            // No point of B stands out along the normal beyond B's support plane, nor of A
+            // below A's: a depth past their overlap is a feature's plane taken past its points
+            // (a hull's faces within the feature angle, fitted as one plane).
+            let (b_top, a_bottom) = (
+                geometry[j].collider.reach_along(&poses[j], normal),
+                geometry[i].collider.reach_along(&poses[i], &-normal),
+            );
+            if let (Some(b_top), Some(a_bottom)) = (b_top, a_bottom) {
+                // Past it by more than the offsets' rounding: a face resting flat, its depths
+                // that overlap to rounding, keeps them as they are.
+                let deepest = b_top + a_bottom;
+                let past = deepest + 1e-9 * (1.0 + b_top.abs() + a_bottom.abs());
+                for depth in s.depths.iter_mut().filter(|d| **d > past) {
+                    *depth = deepest;
+                }
+            }
+            Some(s)
         };
     let support_along = |normal: &Vector3<f64>, features: &mut Features, depths: Vec<f64>| {
         support_with(normal, features, depths, turn_band)
@@ -755,27 +772,26 @@ mod tests {
         );
     }
 
-    /// A cylinder and a box, a ball or another cylinder, turned at random and placed 0.1 to 4
-    /// mm apart (within the 5 mm margin) along a random direction, either body first: the pair
-    /// has a contact, and its deepest point reads their distance (parry's, on the true shapes)
-    /// within 10 µm — GJK's normal of shapes apart, and the planes and lines of caps, sides and
-    /// faces, are exact to rounding. Near a rim the rounded cylinder's normal leaned off the true
-    /// one by up to 18°, and the contact read up to 4.2 mm closer than the shapes were: in
-    /// beyond the slop where they stood 1.9 mm apart.
+    /// Every pair of boxes, balls, cylinders and 10-point hulls (each order), turned at random
+    /// and placed 0.1 to 4 mm apart (within the 5 mm margin) along a random direction, has a
+    /// contact whose deepest point reads their distance (parry's, on the true shapes): within
+    /// 10 µm for a pair with a ball or a cylinder (GJK's normal of shapes apart, and the planes
+    /// and lines of caps, sides and faces, exact to rounding), and never more than 0.25 mm
+    /// closer for two polytopes (their best separating axis reads less than their distance
+    /// where they come nearest corner to corner or corner to edge: up to 0.23 mm here).
+    /// Before, near a rim the rounded cylinder's normal leaned off the true one by up to 18°,
+    /// and hulls' faces within the feature angle were fitted as one plane past their points:
+    /// contacts read up to 4.9 mm closer than the shapes were, in beyond the slop where a box
+    /// stood 1.9 mm from a cylinder's rim.
     #[test]
-    fn a_cylinder_apart_within_the_margin_reads_its_gap() {
+    fn pairs_apart_within_the_margin_read_their_gap() {
         use crate::parry_bridge::tests::sharp_distance;
         use nalgebra::{Quaternion, Unit};
         let mut random = Random::new(5);
-        for case in 0..600 {
-            // A cylinder (kind 2 of `mixed_shape`) and a box, a ball or a cylinder, in turn.
-            let other = mixed_shape(&mut random, case % 3);
-            let cylinder = mixed_shape(&mut random, 2);
-            let shapes = if case % 2 == 0 {
-                [cylinder, other]
-            } else {
-                [other, cylinder]
-            };
+        for case in 0..800 {
+            // `mixed_shape`'s kinds: a box, a ball, a cylinder, a hull.
+            let kinds = [case % 4, case / 4 % 4];
+            let shapes = kinds.map(|k| mixed_shape(&mut random, k));
             let mut c = || random.between(-1.0, 1.0);
             let turns = [(); 2]
                 .map(|()| UnitQuaternion::from_quaternion(Quaternion::new(c(), c(), c(), c())));
@@ -814,15 +830,18 @@ mod tests {
             let contact = world
                 .contacts()
                 .next()
-                .unwrap_or_else(|| panic!("case {case}: no contact"));
+                .unwrap_or_else(|| panic!("case {case}, kinds {kinds:?}: no contact"));
             let deepest = contact
                 .depths
                 .iter()
                 .copied()
                 .fold(f64::NEG_INFINITY, f64::max);
+            let closer = deepest + apart;
+            let curved = kinds.iter().any(|&k| k == 1 || k == 2);
+            let (nearer, farther) = if curved { (1e-5, 1e-5) } else { (2.5e-4, 1e-5) };
             assert!(
-                (deepest + apart).abs() < 1e-5,
-                "case {case}: {apart} m apart, the contact reads {deepest} m deep"
+                closer <= nearer && closer >= -farther,
+                "case {case}, kinds {kinds:?}: {apart} m apart, the contact reads {deepest} m deep"
             );
         }
     }

@@ -142,6 +142,19 @@ impl Collider {
         self.rounded.is_some()
     }
 
+    /// How far this shape at `pose` reaches along the unit `direction` (world): its support
+    /// plane's offset, `max x · direction` over its points. `None` for a shape without a
+    /// support function (none of the world's).
+    pub(crate) fn reach_along(&self, pose: &Pose, direction: &Vector3<f64>) -> Option<f64> {
+        let support = self.shape.as_support_map()?;
+        let towards = to_glam(direction);
+        Some(
+            support
+                .support_point(&(*pose * self.local), towards)
+                .dot(towards),
+        )
+    }
+
     /// Whether `direction` (in the shape's frame) leans off both a cylinder's axis and its
     /// side's normals, as the normal of its rounded rim does: not for other shapes.
     fn leans(&self, direction: Vector) -> bool {
