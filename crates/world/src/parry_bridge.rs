@@ -9,7 +9,7 @@
 use nalgebra::{Matrix3, Point3, UnitQuaternion, Vector3};
 use parry3d_f64::math::{Pose, Rotation, Vector};
 use parry3d_f64::query::details::contact_support_map_support_map_with_params;
-use parry3d_f64::query::gjk::{self, CsoPoint, GJKResult, VoronoiSimplex};
+use parry3d_f64::query::gjk::{GJKResult, VoronoiSimplex};
 use parry3d_f64::query::{
     self, ContactManifold, DefaultQueryDispatcher, PersistentQueryDispatcher, ShapeCastOptions,
     ShapeCastStatus, cast_shapes,
@@ -349,11 +349,9 @@ pub(crate) fn contact_normal(
             // GJK's directions are in `b`'s frame, pointing out of `b`, as the normal does.
             hint.map(|n| pose_b.rotation.inverse() * to_glam(n)),
         ) {
-            // The rounded shapes apart: the true shapes may be too, and near a rim the rounded
-            // one's normal is not theirs ([`sharp_normal`]).
-            GJKResult::ClosestPoints(on_b, on_a, normal)
-                if (on_a - on_b).dot(normal) > radius_b + radius_a + SHARP_GAP
-                    && (b.leans(normal) || a.leans(pos_ba.rotation.inverse() * normal)) =>
+            // Near a rim the rounded shape's normal is not the true shapes' ([`sharp_normal`]).
+            GJKResult::ClosestPoints(_, _, normal)
+                if b.leans(normal) || a.leans(pos_ba.rotation.inverse() * normal) =>
             {
                 sharp_normal(a, b, &pos_ba, prediction, normal).unwrap_or(normal)
             }
@@ -393,20 +391,23 @@ pub(crate) fn contact_normal(
         .ok_or(None)
 }
 
-/// Least gap (m) of two rounded shapes at which [`sharp_normal`] is sought: below it the
-/// closest points of the true shapes are too near each other to give their normal to rounding.
+/// Least distance or overlap (m) of the true shapes at which [`sharp_normal`] gives their
+/// normal: nearer, their closest points (or EPA's deepest ones) are too near each other to give
+/// it to rounding.
 const SHARP_GAP: f64 = 1e-6;
 
 /// The normal (out of `b`, in its frame) of the true shapes of `a` and `b` (placed by `pos_ba`)
-/// when they are apart by at most `prediction`, by GJK on them from `start`; `None` when they
-/// overlap or are farther apart, or a shape has no support function.
+/// within `prediction` of each other or overlapping, by GJK on them from `start`, and EPA
+/// when they overlap; `None` when they are farther apart, touch within [`SHARP_GAP`], or a
+/// shape has no support function.
 ///
 /// Within the rounding of a cylinder's rim the rounded cylinder's surface turns from the cap to
-/// the side, so against an edge, a corner or another rim its normal leans off the true one:
-/// by up to 18° among random pairs within the margin, whose contact then read up to 4.9 mm
-/// closer than the shapes were (`collision::tests`). GJK alone (no EPA) settles the true
-/// normal of shapes apart; overlapping ones keep the rounded shape's, as EPA's on a cylinder's
-/// flat cap is off by more.
+/// the side, so against an edge, a corner or another rim its normal leans off the true one
+/// ([`Collider::leans`]): by up to 18° among random pairs within the margin, whose contact then
+/// read up to 4.9 mm closer than the shapes were, and overlapping ones up to 3.6 mm deeper
+/// (`collision::tests`). There the true shapes' normal is sought; a cap or a side touching
+/// flat keeps the rounded shape's, which is the true one and which EPA's, on a flat cap, is off
+/// by more.
 fn sharp_normal(
     a: &Collider,
     b: &Collider,
@@ -416,10 +417,20 @@ fn sharp_normal(
 ) -> Option<Vector> {
     let (shape_b, shape_a) = (b.shape.as_support_map()?, a.shape.as_support_map()?);
     let mut simplex = VoronoiSimplex::new();
-    simplex.reset(CsoPoint::from_shapes(pos_ba, shape_b, shape_a, start));
-    match gjk::closest_points(pos_ba, shape_b, shape_a, prediction, true, &mut simplex) {
-        GJKResult::ClosestPoints(_, _, normal) => Some(normal),
-        GJKResult::Intersection | GJKResult::Proximity(_) | GJKResult::NoIntersection(_) => None,
+    match contact_support_map_support_map_with_params(
+        pos_ba,
+        shape_b,
+        shape_a,
+        prediction,
+        &mut simplex,
+        Some(start),
+    ) {
+        GJKResult::ClosestPoints(on_b, on_a, normal)
+            if (on_a - on_b).dot(normal).abs() > SHARP_GAP =>
+        {
+            Some(normal)
+        }
+        _ => None,
     }
 }
 

@@ -127,8 +127,10 @@ fn random_piles_solve_under_every_model() {
         }
     }
     assert!(failed.is_empty(), "failed: {failed:?}");
-    // Retrying another path is the exception (measured: 98 of the example's 6,000 problems).
-    assert!(retried <= 10, "{retried} of 180 solves needed a retry");
+    // Retrying another path is the exception: 28 and 29 of the example's 600 problems (200
+    // seeds) with the current build and the one before it, 4.8%, about 9 of these 180; the
+    // bound is three standard deviations of that count above it.
+    assert!(retried <= 17, "{retried} of 180 solves needed a retry");
 }
 
 /// A pile on which every path of Lemke's used to end on a ray after about 376 pivots: seed 108
