@@ -17,7 +17,7 @@ pub const POSITION_LIMIT: f64 = 1e5;
 /// resolves (10 km/s moves a body 100 m a step), and small enough that impulses stay finite.
 pub const SPEED_LIMIT: f64 = 1e4;
 
-/// Masses a dynamic body may have (kg): with the solver's 15 sweeps a mass ratio beyond about
+/// Masses a dynamic body may have (kg): with the solver's 12 to 15 sweeps a mass ratio beyond about
 /// 1000 already strains it; these only keep its arithmetic finite (fixed bodies' masses are
 /// nominal and not checked).
 pub const MASSES: std::ops::RangeInclusive<f64> = 1e-6..=1e12;

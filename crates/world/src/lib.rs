@@ -54,7 +54,7 @@ pub use body::{
 };
 pub use builder::{DEFAULT_GRAVITY, GRAVITY_LIMIT, WorldBuilder};
 pub use error::{StepError, WorldError};
-pub use settings::{MAX_ITERATIONS, PGS_TOLERANCE, Solver, WorldSettings};
+pub use settings::{MAX_ITERATIONS, PGS_ITERATIONS, PGS_TOLERANCE, Solver, WorldSettings};
 pub use shape::{HullMesh, LENGTHS, MassProperties, Shape};
 pub use sleep::{SLEEP_DEPTH_TOLERANCE, Sleeping};
 pub use tatami_contact::{

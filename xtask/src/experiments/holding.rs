@@ -259,7 +259,7 @@ fn report(traces: &[Trace], files: Vec<&'static str>) -> Outcome {
     let mut text = String::from(
         "**Paper.** The face contact holds where per-vertex contacts rock and walk; shown on \
          symmetric towers only.\n\n\
-         **Tatami.** The holding scenes with the default settings (up to 15 PGS sweeps \
+         **Tatami.** The holding scenes with the default settings (up to 12 PGS sweeps \
          warm-started from the last step's impulses, the energy-guarded shock pass, the penetration push in \
          a position pass), under each model, and rapier3d-f64 (its defaults, sleeping off) on the \
          same files. Drift = \
