@@ -39,10 +39,10 @@ pub const PGS_TOLERANCE: f64 = 1e-4;
 pub const PGS_ITERATIONS: usize = 12;
 
 impl Default for Solver {
-    /// PGS with up to [`PGS_ITERATIONS`] sweeps, warm-started from the contact set's impulses of the last step
-    /// (a face-model block from the impulse it applied, other rows by feature id): the
-    /// solver's residual then carries over instead of sinking stacks anew every step; it stops
-    /// early at [`PGS_TOLERANCE`].
+    /// PGS with up to [`PGS_ITERATIONS`] sweeps, warm-started from the contact set's impulses
+    /// of the last step (a face-model block from the impulse it applied, other rows by feature
+    /// id): the solver's residual then carries over instead of sinking stacks anew every step;
+    /// it stops early at [`PGS_TOLERANCE`].
     fn default() -> Self {
         Self::Pgs(PgsParams {
             warm_start: WarmStart::On,

@@ -745,10 +745,10 @@ fn cube_overlap(
 /// the other deeper than 10 cm (a third of the cube) at 10 m/s, nor 12 cm at 20 m/s, at any
 /// step (deepest measured 9.4 and 12.0 cm, the latter within 0.3 mm of its bound; 8.6 and 10.0
 /// cm before a face's friction force and twist shared one limit surface and edges meeting
-/// beyond an end touched at their nearest points, `CHANGES.md`). The step they meet in ends within the slop (test
-/// above); before a pair put back where it met could be put back once more on the next step,
-/// that step, left to the single contact of a corner on an edge while both cubes spun, took
-/// them 12.0 and 13.4 cm deep (2 and 3 starts past a third of the cube).
+/// beyond an end touched at their nearest points, `CHANGES.md`). The step they meet in ends
+/// within the slop (test above); before a pair put back where it met could be put back once
+/// more on the next step, that step, left to the single contact of a corner on an edge while
+/// both cubes spun, took them 12.0 and 13.4 cm deep (2 and 3 starts past a third of the cube).
 #[test]
 fn cubes_thrown_at_each_other_do_not_sink_into_each_other_the_step_after_they_meet() {
     for (speed, bound) in [(10.0, 0.10), (20.0, 0.12)] {
