@@ -160,6 +160,20 @@ struct PairState {
     landed: Touchdown,
     /// How this step's contact lands them, handed on when the step ends.
     landing: Touchdown,
+    /// The energy (J) the landing this step's contact bounces from took, which its bounce
+    /// may give back at most ([`crate::bounce_guard`]); 0 when it does not bounce.
+    bounce_energy: f64,
+}
+
+/// What [`ContactSet::hand_on_impacts`] hands on to a pair's contact ([`crate::impact`]).
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct HandedOn {
+    /// The speed its landed points bounce at in this step ([`Contact::bounce_speed`]).
+    pub bounce_speed: f64,
+    /// The energy (J) the landing it bounces from took; 0 when it does not bounce.
+    pub bounce_energy: f64,
+    /// How it lands the bodies in this step, for the next step's bounce.
+    pub landing: Touchdown,
 }
 
 /// What the last solve left of a pair, for the next warm start.
@@ -374,6 +388,7 @@ impl ContactSet {
                 bearing: None,
                 landed: Touchdown::default(),
                 landing: Touchdown::default(),
+                bounce_energy: 0.0,
             },
         });
         self.met.push(true);
@@ -385,18 +400,24 @@ impl ContactSet {
     /// [`ContactSet::end_step`]. A kept bearing part made with another bounce speed is dropped.
     /// Another collision pass before the step ends (`World::prepare_step`, then the step)
     /// hands on the same landing again.
-    pub(crate) fn hand_on_impacts(
-        &mut self,
-        hand_on: impl Fn(&Contact, Touchdown) -> (f64, Touchdown),
-    ) {
+    pub(crate) fn hand_on_impacts(&mut self, hand_on: impl Fn(&Contact, Touchdown) -> HandedOn) {
         for Entry { contact, state } in &mut self.entries {
-            let (bounce_speed, landing) = hand_on(contact, state.landed);
-            if contact.bounce_speed != bounce_speed {
-                contact.bounce_speed = bounce_speed;
+            let handed = hand_on(contact, state.landed);
+            if contact.bounce_speed != handed.bounce_speed {
+                contact.bounce_speed = handed.bounce_speed;
                 state.bearing = None;
             }
-            state.landing = landing;
+            state.bounce_energy = handed.bounce_energy;
+            state.landing = handed.landing;
         }
+    }
+
+    /// The pairs that bounce in this step, each with the energy (J) its landing took
+    /// ([`HandedOn::bounce_energy`]).
+    pub(crate) fn bounces(&self) -> impl Iterator<Item = (&Contact, f64)> {
+        (self.entries.iter())
+            .filter(|e| e.contact.bounce_speed > 0.0)
+            .map(|e| (&e.contact, e.state.bounce_energy))
     }
 
     /// Ends a step: each pair's landing in it is handed on to the next

@@ -20,6 +20,7 @@
 
 mod apart;
 mod body;
+mod bounce_guard;
 mod box_feature;
 mod box_sat;
 mod broad_phase;

@@ -10,8 +10,9 @@ use tatami_lcp::pgs::{self, PgsParams, PgsWorkspace, Record, Support, WarmStart}
 use tatami_lcp::{DisjointSets, LcpError, Problem, Row, SolverBody};
 
 use crate::body::{BodyKind, Motion};
+use crate::bounce_guard::BounceGuard;
 use crate::collision::{self, BodyGeometry, CollisionSettings, CollisionWorkspace};
-use crate::contact_set::{ContactSet, rows_of};
+use crate::contact_set::{ContactSet, HandedOn, rows_of};
 use crate::impact::Impacts;
 use crate::parallel;
 use crate::parry_bridge::Collider;
@@ -64,6 +65,8 @@ pub struct World {
     /// Scratch: the velocity solve's answer set aside before the shock pass, to be put back if
     /// the pass would add energy.
     set_aside: SolvedState,
+    /// Holds bounces to the energy their landings took ([`crate::bounce_guard`]).
+    bounce_guard: BounceGuard,
     pgs_workspace: PgsWorkspace,
     /// The position pass's problem and workspace, reused across steps.
     position_pass: PositionPass,
@@ -102,6 +105,7 @@ impl World {
             collision_workspace: CollisionWorkspace::default(),
             islands: Islands::default(),
             set_aside: SolvedState::default(),
+            bounce_guard: BounceGuard::default(),
             pgs_workspace: PgsWorkspace::default(),
             position_pass: PositionPass::default(),
             timings: StepTimings::default(),
@@ -356,8 +360,16 @@ impl World {
             settings: &self.settings.contact,
         };
         self.contact_set.hand_on_impacts(|contact, met| {
-            let bounce = impacts.bounce_speed(contact, met);
-            (bounce, impacts.landing(contact, met, bounce))
+            let bounce_speed = impacts.bounce_speed(contact, met);
+            HandedOn {
+                bounce_speed,
+                bounce_energy: if bounce_speed > 0.0 {
+                    impacts.landing_took(contact, met)
+                } else {
+                    0.0
+                },
+                landing: impacts.landing(contact, met, bounce_speed),
+            }
         });
     }
 
@@ -489,6 +501,11 @@ impl World {
                 }
             }
         }
+        (self.bounce_guard).before_solve(
+            (&self.problem, &self.bodies),
+            (&self.gravity, dt),
+            self.contact_set.bounces(),
+        );
         let under_gravity = self.gravity != Vector3::zeros();
         let beside = self.problem.rows.len() >= POSITION_PASS_BESIDE_ROWS;
         let order = if self.settings.shock_propagation || (correcting && under_gravity) {
@@ -529,6 +546,8 @@ impl World {
         };
         self.direct_info = velocity_result.map_err(|source| name(self, source))?;
         position_result.map_err(|source| name(self, source))?;
+        self.bounce_guard
+            .after_solve(&mut self.problem, &self.bodies);
         if correcting {
             self.limit_pseudo_velocities();
         }

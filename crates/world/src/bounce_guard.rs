@@ -1,0 +1,164 @@
+//! No bounce gives back more energy than its landing took.
+//!
+//! A bouncing pair lands in one step and bounces in the next, its support points at one speed
+//! ([`crate::impact`]) capped so that they get back at most `e²` of what the landing took. That
+//! cap reads the pair's coupling along the normal alone; friction is not in it. Where the
+//! points that bounce stick, friction's reaction turns the body's spin into lift as well: a
+//! cylinder with restitution 0.95 and friction 1, dropped 1 m turning at random, bounced off
+//! its rim with 1.06 times the energy it was dropped with.
+//!
+//! So after the velocity solve, each island with a bounce (dynamic bodies joined by their
+//! contacts, touching no kinematic body, which may do work on it) is checked: the contacts'
+//! work on it in the step may not exceed the energy its bounces' landings took
+//! ([`Impacts::landing_took`](crate::impact::Impacts::landing_took)). That work is the change
+//! of the energy the integrator keeps in free flight, the kinetic energy at each body's
+//! velocity less half a step of gravity ([`crate::impact`]'s module doc), from the solve's
+//! start (gravity's impulse added) to its end. Where it passes the bound, every velocity of
+//! the island is scaled by one factor below 1 to meet it. Scaled so, a contact's normal
+//! velocity keeps to any target at or below zero (resting, or closing a gap), and one that
+//! bounces keeps parting, slower; the impulses are not changed. A bounce the normal cap holds
+//! to `e²` of its landing stays under the bound, and a step without a bounce is not read.
+
+use nalgebra::Vector3;
+use tatami_contact::{Contact, ContactProjection};
+use tatami_lcp::{DisjointSets, Problem, SolverBody};
+
+use crate::body::Body;
+
+/// Islands with a bounce: their energies before the velocity solve, and what their bounces'
+/// landings took; buffers reused.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct BounceGuard {
+    /// The dynamic bodies, joined through the problem's blocks.
+    islands: DisjointSets,
+    /// Per body root: its island's accounts (read at roots only).
+    accounts: Vec<Account>,
+    /// Half a step of gravity's change of velocity (m/s): kinetic energies are read at the
+    /// velocities less it. `None` when the step has no bounce, and the guard no work.
+    half_step: Option<Vector3<f64>>,
+}
+
+/// One island's energies (J).
+#[derive(Debug, Clone, Copy, Default)]
+struct Account {
+    /// Kinetic energy before the solve.
+    before: f64,
+    /// What its bounces' landings took.
+    landings_took: f64,
+    /// Whether a kinematic body touches it.
+    driven: bool,
+    /// Kinetic energy after the solve if every velocity is scaled by `s`:
+    /// `scaled[0] s² − scaled[1] s + scaled[2]`.
+    scaled: [f64; 3],
+}
+
+impl BounceGuard {
+    /// Reads the islands of `problem` (built, with gravity's impulse for a step of `dt`, not
+    /// yet solved) that have one of `bounces` (each pair that bounces in this step, with what
+    /// its landing took): their kinetic energy now.
+    pub(crate) fn before_solve<'a>(
+        &mut self,
+        (problem, bodies): (&Problem<ContactProjection>, &[Body]),
+        (gravity, dt): (&Vector3<f64>, f64),
+        bounces: impl Iterator<Item = (&'a Contact, f64)>,
+    ) {
+        let mut bounces = bounces.peekable();
+        if bounces.peek().is_none() {
+            self.half_step = None;
+            return;
+        }
+        let half_step = gravity * (dt / 2.0);
+        self.half_step = Some(half_step);
+        self.islands.reset(bodies.len());
+        for block in &problem.blocks {
+            let (a, b) = (block.body_a.0, block.body_b.0);
+            if bodies[a].is_dynamic() && bodies[b].is_dynamic() {
+                self.islands.join(a, b);
+            }
+        }
+        self.accounts.clear();
+        self.accounts.resize(bodies.len(), Account::default());
+        for block in &problem.blocks {
+            let (a, b) = (block.body_a.0, block.body_b.0);
+            for (body, other) in [(a, b), (b, a)] {
+                if bodies[body].is_dynamic() && bodies[other].is_kinematic() {
+                    self.accounts[self.islands.root(body)].driven = true;
+                }
+            }
+        }
+        for (contact, took) in bounces {
+            let (a, b) = (contact.body_a.0, contact.body_b.0);
+            let body = if bodies[a].is_dynamic() { a } else { b };
+            if bodies[body].is_dynamic() {
+                self.accounts[self.islands.root(body)].landings_took += took;
+            }
+        }
+        for (k, (body, solved)) in bodies.iter().zip(&problem.bodies).enumerate() {
+            if body.is_dynamic() {
+                let [quadratic, linear, constant] = scaled_energy(body, solved, &half_step);
+                self.accounts[self.islands.root(k)].before += quadratic - linear + constant;
+            }
+        }
+    }
+
+    /// Scales the velocities of each island read by [`BounceGuard::before_solve`] whose
+    /// energy the solve raised by more than its bounces' landings took, down to that.
+    pub(crate) fn after_solve(
+        &mut self,
+        problem: &mut Problem<ContactProjection>,
+        bodies: &[Body],
+    ) {
+        let Some(half_step) = self.half_step else {
+            return;
+        };
+        for (k, (body, solved)) in bodies.iter().zip(&problem.bodies).enumerate() {
+            if body.is_dynamic() {
+                let terms = scaled_energy(body, solved, &half_step);
+                let account = &mut self.accounts[self.islands.root(k)];
+                for (sum, term) in account.scaled.iter_mut().zip(terms) {
+                    *sum += term;
+                }
+            }
+        }
+        for (k, (body, solved)) in bodies.iter().zip(&mut problem.bodies).enumerate() {
+            let account = self.accounts[self.islands.root(k)];
+            if body.is_dynamic() && account.landings_took > 0.0 && !account.driven {
+                let scale = account.scale_to(account.before + account.landings_took);
+                solved.linear_velocity *= scale;
+                solved.angular_velocity *= scale;
+            }
+        }
+    }
+}
+
+impl Account {
+    /// The largest factor, at most 1, that brings the island's energy after the solve to no
+    /// more than `allowed`; where no factor does, the one that leaves it least.
+    fn scale_to(&self, allowed: f64) -> f64 {
+        let [a, b, c] = self.scaled;
+        if a <= 0.0 || a - b + c <= allowed {
+            return 1.0;
+        }
+        // a s² − b s + c = allowed, its larger root: the energy grows with s beyond b / 2a.
+        let least = b / (2.0 * a);
+        let discriminant = b * b - 4.0 * a * (c - allowed);
+        let scale = if discriminant > 0.0 {
+            (b + discriminant.sqrt()) / (2.0 * a)
+        } else {
+            least
+        };
+        scale.clamp(0.0, 1.0)
+    }
+}
+
+/// `body`'s kinetic energy with `solved`'s velocities scaled by `s`, read at the linear velocity
+/// less `half_step`, as `[q, l, c]` for `q s² − l s + c` (J).
+fn scaled_energy(body: &Body, solved: &SolverBody, half_step: &Vector3<f64>) -> [f64; 3] {
+    let v = &solved.linear_velocity;
+    let moving = body.kinetic_energy_at(&body.inertia_world(), v, &solved.angular_velocity);
+    [
+        moving,
+        body.mass() * v.dot(half_step),
+        0.5 * body.mass() * half_step.norm_squared(),
+    ]
+}
