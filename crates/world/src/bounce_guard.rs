@@ -133,10 +133,12 @@ impl BounceGuard {
 
 impl Account {
     /// The largest factor, at most 1, that brings the island's energy after the solve to no
-    /// more than `allowed`; where no factor does, the one that leaves it least.
+    /// more than `allowed`; where no factor does, the one that leaves it least. 1 (the solve's
+    /// velocities kept) where the energies are not finite: the step's check of the bodies'
+    /// state reports those.
     fn scale_to(&self, allowed: f64) -> f64 {
         let [a, b, c] = self.scaled;
-        if a <= 0.0 || a - b + c <= allowed {
+        if !(a > 0.0 && a - b + c > allowed) {
             return 1.0;
         }
         // a s² − b s + c = allowed, its larger root: the energy grows with s beyond b / 2a.
@@ -147,7 +149,11 @@ impl Account {
         } else {
             least
         };
-        scale.clamp(0.0, 1.0)
+        if scale.is_finite() {
+            scale.clamp(0.0, 1.0)
+        } else {
+            1.0
+        }
     }
 }
 
@@ -161,4 +167,61 @@ fn scaled_energy(body: &Body, solved: &SolverBody, half_step: &Vector3<f64>) -> 
         body.mass() * v.dot(half_step),
         0.5 * body.mass() * half_step.norm_squared(),
     ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn account(scaled: [f64; 3]) -> Account {
+        Account {
+            scaled,
+            ..Account::default()
+        }
+    }
+
+    /// The energy `q s² − l s + c` at `scale`.
+    fn energy([q, l, c]: [f64; 3], scale: f64) -> f64 {
+        q * scale * scale - l * scale + c
+    }
+
+    #[test]
+    fn an_island_within_its_allowance_keeps_its_velocities() {
+        let terms = [10.0, 1.0, 0.1];
+        assert_eq!(account(terms).scale_to(energy(terms, 1.0)), 1.0);
+        assert_eq!(account(terms).scale_to(20.0), 1.0);
+        // At rest: nothing to scale.
+        assert_eq!(account([0.0, 0.0, 0.1]).scale_to(0.0), 1.0);
+    }
+
+    /// Over its allowance, the island is scaled to meet it exactly (to rounding), by the
+    /// root nearer 1 of the quadratic: for `[10, 1, 0.1]` (9.1 J at full speed) and 5 J
+    /// allowed, `10 s² − s + 0.1 = 5`, `s = (1 + √197) / 20`.
+    #[test]
+    fn an_island_over_its_allowance_is_scaled_to_meet_it() {
+        let terms = [10.0, 1.0, 0.1];
+        let scale = account(terms).scale_to(5.0);
+        assert!((scale - (1.0 + 197f64.sqrt()) / 20.0).abs() < 1e-15);
+        assert!((energy(terms, scale) - 5.0).abs() < 1e-12);
+    }
+
+    /// An allowance below the least energy any factor gives (`c − l² / 4q`, the gravity half
+    /// step's share) is met as nearly as it can be, at the minimising factor `l / 2q`.
+    #[test]
+    fn an_allowance_out_of_reach_takes_the_least_energy() {
+        let terms = [10.0, 1.0, 0.1];
+        assert_eq!(account(terms).scale_to(0.0), 0.05);
+    }
+
+    #[test]
+    fn energies_that_are_not_finite_leave_the_velocities_alone() {
+        for terms in [
+            [f64::NAN, 1.0, 0.1],
+            [f64::INFINITY, 1.0, 0.1],
+            [10.0, f64::INFINITY, 0.1],
+        ] {
+            assert_eq!(account(terms).scale_to(5.0), 1.0, "{terms:?}");
+        }
+        assert_eq!(account([10.0, 1.0, 0.1]).scale_to(f64::NAN), 1.0);
+    }
 }
