@@ -412,6 +412,12 @@ impl ContactSet {
         }
     }
 
+    /// How the pair at `index` landed in the last step, which its bounce in this step is
+    /// from ([`crate::impact`]).
+    pub(crate) fn landed(&self, index: usize) -> Option<Touchdown> {
+        self.entries.get(index).map(|e| e.state.landed)
+    }
+
     /// The pairs that bounce in this step, each with the energy (J) its landing took
     /// ([`HandedOn::bounce_energy`]).
     pub(crate) fn bounces(&self) -> impl Iterator<Item = (&Contact, f64)> {

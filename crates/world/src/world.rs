@@ -13,7 +13,7 @@ use crate::body::{BodyKind, Motion};
 use crate::bounce_guard::BounceGuard;
 use crate::collision::{self, BodyGeometry, CollisionSettings, CollisionWorkspace};
 use crate::contact_set::{ContactSet, HandedOn, rows_of};
-use crate::impact::Impacts;
+use crate::impact::{self, Impacts};
 use crate::parallel;
 use crate::parry_bridge::Collider;
 use crate::press::Presses;
@@ -400,6 +400,7 @@ impl World {
         for index in 0..pairs {
             let first = problem.blocks.len();
             let first_row = problem.rows.len();
+            let landed = self.contact_set.landed(index);
             let awake = self.contact_set.get(index).is_some_and(|(contact, _)| {
                 !self.bodies[contact.body_a.0].asleep && !self.bodies[contact.body_b.0].asleep
             });
@@ -427,6 +428,11 @@ impl World {
                         pair: pair_name(&self.bodies, contact),
                         source,
                     })?;
+                if let Some(landed) = landed {
+                    let rows = &mut problem.rows[first_row..];
+                    let at = (&self.bodies[..], &problem.bodies[..]);
+                    impact::bounce_where_landed(contact, landed, at, rows, (&contact_settings, dt));
+                }
                 let press = self.presses.share(index);
                 if press > 0.0 {
                     grip::build(
