@@ -30,7 +30,7 @@
 //! velocities; [`Impacts::bounce_speed`]). A ball, met and bounced at one point through its
 //! centre, bounces at Newton's speed. Friction is not in that cap; what it adds (a rim's
 //! reaction turning spin into lift) is held back after the solve, the bounce held to what its
-//! landing took ([`crate::bounce_guard`]). A single corner of two polytopes bounces at the
+//! landing took ([`crate::bounce_guard`]). A corner or an edge of two polytopes bounces at the
 //! arm it landed with, not the one the landing step turned it to ([`bounce_where_landed`]).
 
 use nalgebra::{DMatrix, DVector, Point2, Vector2, Vector3};
@@ -343,25 +343,28 @@ impl Impacts<'_> {
     }
 }
 
-/// Moves the normal row of a bouncing point support (a corner or a vertex, of two polytopes)
-/// to where its landing `landed` met, at the arms the bodies had there
-/// ([`Touchdown::arms`]), and gives it the contact's bounce once that point closes to within
-/// the slop of the surface in the step, at the velocities in `solved` (before the step's
-/// forces). `bodies` are the world's, `rows` the contact's from its first.
+/// Moves the normal row of a bouncing support (its first row: a point's, or the face model's
+/// block at the support's centroid) to where its landing `landed` met, at the arms the bodies
+/// had there ([`Touchdown::arms`]), when it is the same point turned with the bodies since —
+/// its arm differs from the landing's by no more than a step's turn — and gives it the
+/// contact's bounce once that point closes to within the slop of the surface in the step, at
+/// the velocities in `solved` (before the step's forces). Only the arms of dynamic bodies of
+/// two polytopes are moved. `bodies` are the world's, `rows` the contact's from its first.
 ///
-/// The impact that lands a corner is split over two steps: the landing step stops the corner
-/// at the surface, which sets the body turning, and the rest of the stop and the bounce act on
-/// the next, where the corner's arm has turned with the body. A 0.3 m cube thrown corner first
-/// at 3 m/s at a floor, 5° off corner-down, left up to 25% (restitution 0.5) and 33% (1) too
-/// fast in spin and 13% too slow upwards, the earlier in a step its corner landed; acting at
-/// the landing's arm, the two parts add up to the single-point impact's closed form: to
-/// rounding for a cube that was not spinning, within 6e-6 for a box of other proportions
-/// (whose inertia turns with it in the landing step), within 1% for a cube tumbling at 1
-/// rad/s (its arm turned to the impact to first order). The corner's own gap is not that
-/// point's: the landing step's turn lifts the corner off the surface (a cube 10° off
-/// corner-down, landed from 4.9 mm, stood 1.8 mm off and never bounced, its first impact
-/// left to a second one), so the bounce is given within the slop. Curved shapes keep their
-/// arm: the point of a ball or a rim that touches is not the material point that met.
+/// An impact that lands a corner or an edge is split over two steps: the landing step stops
+/// it at the surface, which sets the body turning, and the rest of the stop and the bounce act
+/// on the next, where the arm has turned with the body. A 0.3 m cube thrown corner first at 3
+/// m/s at a floor, 5° off corner-down, left up to 25% (restitution 0.5) and 33% (1) too fast
+/// in spin and 13% too slow upwards, the earlier in a step its corner landed, and thrown edge
+/// first with 6–23% too much angular momentum; acting at the landing's arm, the two parts add
+/// up to the single-point impact's closed form: to rounding for a cube that was not spinning,
+/// within 6e-6 for a box of other proportions (whose inertia turns with it in the landing
+/// step), within 1% for a cube tumbling at 1 rad/s (its arm turned to the impact to first
+/// order). The point's own gap is not that point's: the landing step's turn lifts a corner
+/// off the surface (a cube 10° off corner-down, landed from 4.9 mm, stood 1.8 mm off and never
+/// bounced, its first impact left to a second one), so the bounce is given within the slop.
+/// Curved shapes keep their arm: the point of a ball or a rim that touches is not the material
+/// point that met.
 pub(crate) fn bounce_where_landed(
     contact: &Contact,
     landed: Touchdown,
@@ -378,17 +381,36 @@ pub(crate) fn bounce_where_landed(
     let bounce = contact.bounce_speed;
     if bounce <= 0.0
         || landed.speed <= 0.0
-        || contact.support.vertices().len() != 1
         || !(polytope(contact.body_a) && polytope(contact.body_b))
     {
         return;
     }
-    let (Some(row), Some(&depth)) = (rows.first_mut(), contact.depths.first()) else {
+    let Some(row) = rows.first_mut() else {
         return;
     };
+    let depth = contact.depth();
     let j = &mut row.jacobian;
-    j.angular_a = landed.arms[0].cross(&j.linear_a);
-    j.angular_b = landed.arms[1].cross(&j.linear_b);
+    let sides = [
+        (contact.body_a, landed.arms[0], j.linear_a, j.angular_a),
+        (contact.body_b, landed.arms[1], j.linear_b, j.angular_b),
+    ];
+    // The row's point is the landing's, turned since, on every dynamic body.
+    let moved = sides.map(|(id, arm, linear, angular)| {
+        let dynamic = bodies[id.0].is_dynamic();
+        let at_landing = arm.cross(&linear);
+        let turn = solved[id.0].angular_velocity.norm() * dt;
+        let same = (at_landing - angular).norm() <= (turn + 1e-9) * arm.norm() + 1e-12;
+        (dynamic, same, at_landing)
+    });
+    if moved.iter().any(|&(dynamic, same, _)| dynamic && !same) {
+        return;
+    }
+    if moved[0].0 {
+        j.angular_a = moved[0].2;
+    }
+    if moved[1].0 {
+        j.angular_b = moved[1].2;
+    }
     let normal_speed = j.velocity(&solved[contact.body_a.0], &solved[contact.body_b.0]);
     if settings.has_landed(depth) || -normal_speed * dt >= -depth - settings.slop {
         row.target = row.target.max(bounce);
