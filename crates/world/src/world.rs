@@ -376,7 +376,8 @@ impl World {
     /// Contact rows from the velocities at the start of the step, then gravity's impulse. A
     /// contact a kinematic body presses in beyond the slop gets a grip beside the model's
     /// blocks, and one that squeezes its body no pushes for the position pass
-    /// ([`crate::press`]).
+    /// ([`crate::press`]). A bounce acts where its landing met
+    /// ([`impact::bounce_where_landed`]).
     ///
     /// On one thread, in the contact set's order. Building them on both cores was measured: runs
     /// of 16 contacts, each built into buffers of its own and then appended with their blocks'
