@@ -24,6 +24,7 @@ use tatami_contact::{Contact, ContactProjection};
 use tatami_lcp::{DisjointSets, Problem, SolverBody};
 
 use crate::body::Body;
+use crate::sleep::join_dynamic;
 
 /// Islands with a bounce: their energies before the velocity solve, and what their bounces'
 /// landings took; buffers reused.
@@ -69,13 +70,8 @@ impl BounceGuard {
         }
         let half_step = gravity * (dt / 2.0);
         self.half_step = Some(half_step);
-        self.islands.reset(bodies.len());
-        for block in &problem.blocks {
-            let (a, b) = (block.body_a.0, block.body_b.0);
-            if bodies[a].is_dynamic() && bodies[b].is_dynamic() {
-                self.islands.join(a, b);
-            }
-        }
+        let pairs = problem.blocks.iter().map(|b| (b.body_a.0, b.body_b.0));
+        join_dynamic(&mut self.islands, bodies, pairs);
         self.accounts.clear();
         self.accounts.resize(bodies.len(), Account::default());
         for block in &problem.blocks {

@@ -158,12 +158,22 @@ impl Islands {
 
     /// Islands do not depend on contact order: a set's root is its smallest body index.
     fn join<'a>(&mut self, bodies: &[Body], contacts: impl Iterator<Item = &'a Contact>) {
-        self.sets.reset(bodies.len());
-        for contact in contacts {
-            let (a, b) = (contact.body_a.0, contact.body_b.0);
-            if bodies[a].is_dynamic() && bodies[b].is_dynamic() {
-                self.sets.join(a, b);
-            }
+        let pairs = contacts.map(|contact| (contact.body_a.0, contact.body_b.0));
+        join_dynamic(&mut self.sets, bodies, pairs);
+    }
+}
+
+/// Sets `sets` to `bodies`' islands through `pairs` (body indices): each pair of dynamic
+/// bodies joined, fixed and kinematic ones left alone.
+pub(crate) fn join_dynamic(
+    sets: &mut DisjointSets,
+    bodies: &[Body],
+    pairs: impl Iterator<Item = (usize, usize)>,
+) {
+    sets.reset(bodies.len());
+    for (a, b) in pairs {
+        if bodies[a].is_dynamic() && bodies[b].is_dynamic() {
+            sets.join(a, b);
         }
     }
 }

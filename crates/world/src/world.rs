@@ -18,7 +18,7 @@ use crate::parallel;
 use crate::parry_bridge::Collider;
 use crate::press::Presses;
 use crate::rewind::{RewindWorkspace, StepMotion};
-use crate::sleep::Islands;
+use crate::sleep::{self, Islands};
 use crate::support::Outline;
 use crate::{
     Body, BodyDesc, BodyId, Solver, StepError, StepTimings, WorldBuilder, WorldError, WorldSettings,
@@ -829,13 +829,8 @@ impl SolvedState {
         bodies: &[Body],
     ) {
         let dynamic = |k: usize| bodies[k].is_dynamic();
-        self.islands.reset(bodies.len());
-        for block in &problem.blocks {
-            let (a, b) = (block.body_a.0, block.body_b.0);
-            if dynamic(a) && dynamic(b) {
-                self.islands.join(a, b);
-            }
-        }
+        let pairs = problem.blocks.iter().map(|b| (b.body_a.0, b.body_b.0));
+        sleep::join_dynamic(&mut self.islands, bodies, pairs);
         // Each body's world inertia computed once for both energies.
         self.energies.clear();
         self.energies.resize(bodies.len(), (0.0, 0.0));
