@@ -33,6 +33,10 @@ pub(crate) struct SweepAndPrune {
     cursor: Vec<usize>,
     /// Scratch: the boxes' extents across the strips.
     extents: Vec<f64>,
+    /// Scratch: the pairs as the strips find them, before they are put in order.
+    found: Vec<(usize, usize)>,
+    /// Scratch: where each box's pairs as the lower index start in the ordered list.
+    firsts: Vec<usize>,
 }
 
 /// Strip width as a multiple of the boxes' median extent across the strips: a box of median
@@ -75,7 +79,7 @@ impl SweepAndPrune {
         is_static: &[bool],
         pairs: &mut Vec<(usize, usize)>,
     ) {
-        pairs.clear();
+        self.found.clear();
         let n = boxes.len() as f64;
         let centre = |(lo, hi): &(Vector3<f64>, Vector3<f64>)| (lo + hi) / 2.0;
         let mean = boxes.iter().map(centre).sum::<Vector3<f64>>() / n.max(1.0);
@@ -143,12 +147,13 @@ impl SweepAndPrune {
                     // A pair sharing several strips is reported from the one where their
                     // overlap across the strips begins.
                     if overlap && strips.of(a.lo[across].max(b.lo[across])) == strip {
-                        pairs.push((a.index.min(b.index), a.index.max(b.index)));
+                        self.found
+                            .push((a.index.min(b.index), a.index.max(b.index)));
                     }
                 }
             }
         }
-        pairs.sort_unstable();
+        order_pairs(&self.found, &mut self.firsts, boxes.len(), pairs);
     }
 
     /// Strips across `across` [`STRIP_WIDTH`] median boxes wide, at most one per
@@ -183,6 +188,39 @@ impl SweepAndPrune {
             width,
             count: (count as usize).min(boxes.len() / BOXES_PER_STRIP),
         }
+    }
+}
+
+/// Writes `found` (pairs `(i, j)`, `i < j < n`, each once) to `pairs` in increasing order: a
+/// counting sort by `i`, then each `i`'s few pairs by `j`. The strips find a pile's pairs
+/// (over 10,000 while it lands) in sweep order, which a comparison sort took 1% of the
+/// pile's step to put in order.
+fn order_pairs(
+    found: &[(usize, usize)],
+    firsts: &mut Vec<usize>,
+    n: usize,
+    pairs: &mut Vec<(usize, usize)>,
+) {
+    firsts.clear();
+    firsts.resize(n + 1, 0);
+    for &(i, _) in found {
+        firsts[i + 1] += 1;
+    }
+    for i in 0..n {
+        firsts[i + 1] += firsts[i];
+    }
+    pairs.clear();
+    pairs.resize(found.len(), (0, 0));
+    for &pair in found {
+        let next = &mut firsts[pair.0];
+        pairs[*next] = pair;
+        *next += 1;
+    }
+    // Each `firsts[i]` now holds where `i`'s pairs end, which is where `i + 1`'s start.
+    let mut start = 0;
+    for &end in &firsts[..n] {
+        pairs[start..end].sort_unstable();
+        start = end;
     }
 }
 

@@ -6,15 +6,17 @@
 //! because parry's polygonal features hold at most four vertices (a cylinder cap becomes a
 //! square).
 
+use std::cell::RefCell;
+
 use nalgebra::{Matrix3, Point3, UnitQuaternion, Vector3};
 use parry3d_f64::math::{Pose, Rotation, Vector};
-use parry3d_f64::query::details::contact_support_map_support_map_with_params;
-use parry3d_f64::query::gjk::{GJKResult, VoronoiSimplex};
+use parry3d_f64::query::epa::EPA;
+use parry3d_f64::query::gjk::{self, CsoPoint, GJKResult, VoronoiSimplex};
 use parry3d_f64::query::{
     self, ContactManifold, DefaultQueryDispatcher, PersistentQueryDispatcher, ShapeCastOptions,
     ShapeCastStatus, cast_shapes,
 };
-use parry3d_f64::shape::{ConvexPolyhedron, Cuboid, SharedShape};
+use parry3d_f64::shape::{ConvexPolyhedron, Cuboid, SharedShape, SupportMap};
 
 use crate::HullMesh;
 use crate::apart::AxisGap;
@@ -48,7 +50,8 @@ pub(crate) struct Collider {
 /// of the rims, so a cap or the side touching a face or an edge gives the same normal; and GJK
 /// on the core finds the normal of a pair overlapping by less than the rounding — 1 cm and more
 /// on the bench's cylinders, five times the default 2 mm slop that resting contacts sink to —
-/// without EPA, which parry builds afresh for every call (16% of the mixed pile's samples).
+/// without EPA (16% of the mixed pile's samples when every overlapping pair ran it, on a
+/// new EPA each time; see [`gjk_then_epa`]).
 const ROUNDING: f64 = 0.05;
 
 impl std::fmt::Debug for Collider {
@@ -340,12 +343,11 @@ pub(crate) fn contact_normal(
         // rims crossing can overlap while the rounded shapes are apart by up to that much of
         // each: the cores are searched within the prediction plus √2 times their roundings,
         // and the contact keeps to the prediction on the true shapes ([`Collider::is_rounded`]).
-        match contact_support_map_support_map_with_params(
+        match gjk_then_epa(
             &pos_ba,
             core_b,
             core_a,
             prediction + std::f64::consts::SQRT_2 * (radius_b + radius_a),
-            &mut VoronoiSimplex::new(),
             // GJK's directions are in `b`'s frame, pointing out of `b`, as the normal does.
             hint.map(|n| pose_b.rotation.inverse() * to_glam(n)),
         ) {
@@ -416,15 +418,7 @@ fn sharp_normal(
     start: Vector,
 ) -> Option<Vector> {
     let (shape_b, shape_a) = (b.shape.as_support_map()?, a.shape.as_support_map()?);
-    let mut simplex = VoronoiSimplex::new();
-    match contact_support_map_support_map_with_params(
-        pos_ba,
-        shape_b,
-        shape_a,
-        prediction,
-        &mut simplex,
-        Some(start),
-    ) {
+    match gjk_then_epa(pos_ba, shape_b, shape_a, prediction, Some(start)) {
         GJKResult::ClosestPoints(on_b, on_a, normal)
             if (on_a - on_b).dot(normal).abs() > SHARP_GAP =>
         {
@@ -432,6 +426,42 @@ fn sharp_normal(
         }
         _ => None,
     }
+}
+
+/// Parry's `contact_support_map_support_map_with_params`, step for step, with this thread's
+/// EPA: parry builds a new one, and allocates its buffers, for every pair whose shapes
+/// overlap (the pile's threads then also waited on the allocator's lock). Its GJK searches
+/// from `start` (in `pos12`'s first frame), or from the centres' offset.
+fn gjk_then_epa<G1, G2>(
+    pos12: &Pose,
+    g1: &G1,
+    g2: &G2,
+    prediction: f64,
+    start: Option<Vector>,
+) -> GJKResult
+where
+    G1: ?Sized + SupportMap,
+    G2: ?Sized + SupportMap,
+{
+    thread_local! {
+        static EPA_BUFFERS: RefCell<EPA> = RefCell::new(EPA::new());
+    }
+    let dir = start
+        .or_else(|| pos12.translation.try_normalize())
+        .unwrap_or(Vector::X);
+    let mut simplex = VoronoiSimplex::new();
+    simplex.reset(CsoPoint::from_shapes(pos12, g1, g2, dir));
+    let found = gjk::closest_points(pos12, g1, g2, prediction, true, &mut simplex);
+    if found != GJKResult::Intersection {
+        return found;
+    }
+    // The origin is inside the shapes' difference: EPA finds the way out.
+    EPA_BUFFERS
+        .with_borrow_mut(|epa| epa.closest_points(pos12, g1, g2, &simplex))
+        .map_or(
+            GJKResult::NoIntersection(Vector::X),
+            |(on_1, on_2, normal)| GJKResult::ClosestPoints(on_1, on_2, normal),
+        )
 }
 
 /// Two colliders that parry's GJK or manifold found apart, one of them curved, placed by the
