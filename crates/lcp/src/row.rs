@@ -63,6 +63,12 @@ impl Jacobian {
             + self.angular_b.dot(b[1])
     }
 
+    /// The sum of the twelve coefficients, `±∞` or NaN if any is not finite.
+    fn sum(&self) -> f64 {
+        let sum = (self.linear_a + self.angular_a) + (self.linear_b + self.angular_b);
+        sum.x + sum.y + sum.z
+    }
+
     fn is_finite(&self) -> bool {
         all_finite(self.linear_a.as_slice())
             & all_finite(self.angular_a.as_slice())
@@ -84,7 +90,61 @@ pub struct Row {
 }
 
 impl Row {
+    /// Every value finite. Rows are checked before every solve: a finite sum of the values
+    /// proves it at one addition each (an infinity or a NaN among them makes the sum one); only
+    /// a sum that is not finite, which finite values can also reach by overflow, is looked at
+    /// value by value.
     pub(crate) fn is_finite(&self) -> bool {
-        self.jacobian.is_finite() && self.target.is_finite() && self.impulse.is_finite()
+        (self.jacobian.sum() + self.target + self.impulse).is_finite()
+            || (self.jacobian.is_finite() && self.target.is_finite() && self.impulse.is_finite())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A row whose fourteen values are `values`, in the order Jacobian (A linear, A angular,
+    /// B linear, B angular), target, impulse.
+    fn row(values: [f64; 14]) -> Row {
+        let v = |k: usize| Vector3::new(values[k], values[k + 1], values[k + 2]);
+        Row {
+            jacobian: Jacobian {
+                linear_a: v(0),
+                angular_a: v(3),
+                linear_b: v(6),
+                angular_b: v(9),
+            },
+            target: values[12],
+            impulse: values[13],
+        }
+    }
+
+    #[test]
+    fn a_row_is_finite_exactly_when_every_value_is() {
+        let ordinary = [
+            0.5, -2.0, 3.0, 0.0, 1e-300, -7.5, 1.0, 2.0, -3.0, 4.0, 5.0, -6.0, 0.1, 9.0,
+        ];
+        assert!(row(ordinary).is_finite());
+        // Finite values whose sum overflows, to +∞ or, by the two signs, to NaN.
+        assert!(row([f64::MAX; 14]).is_finite());
+        let mut both = [f64::MAX; 14];
+        both[13] = -f64::MAX;
+        both[0] = -f64::MAX;
+        assert!(row(both).is_finite());
+        for slot in 0..14 {
+            for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+                for rest in [ordinary, [f64::MAX; 14], [-f64::MAX; 14]] {
+                    let mut values = rest;
+                    values[slot] = bad;
+                    assert!(!row(values).is_finite(), "{bad} in slot {slot}");
+                }
+            }
+        }
+        // Infinities of both signs, whose sum is NaN.
+        let mut opposite = ordinary;
+        opposite[2] = f64::INFINITY;
+        opposite[7] = f64::NEG_INFINITY;
+        assert!(!row(opposite).is_finite());
     }
 }
