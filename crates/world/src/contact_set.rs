@@ -153,6 +153,9 @@ struct PairState {
     last: Solved,
     /// Still touching as of the current collision pass (its contact kept or recomputed).
     touching: bool,
+    /// Kept as it was in the current collision pass, neither body having moved by more than
+    /// [`REUSE_TOLERANCE`] since its contact was found.
+    still: bool,
     /// The face model's bearing part of the contact, while the contact is unchanged.
     bearing: Option<Bearing>,
     /// How the last step's contact landed the bodies on each other, for this step's bounce
@@ -300,7 +303,8 @@ impl ContactSet {
             let pair = (entry.contact.body_a.0, entry.contact.body_b.0);
             let [was_a, was_b] = &entry.state.poses;
             let (now_a, now_b) = (placements[pair.0], placements[pair.1]);
-            if still(was_a, now_a) && still(was_b, now_b) {
+            entry.state.still = still(was_a, now_a) && still(was_b, now_b);
+            if entry.state.still {
                 entry.state.touching = true;
                 return false;
             }
@@ -385,6 +389,7 @@ impl ContactSet {
                 blocks: 0..0,
                 last: Solved::Nothing,
                 touching: true,
+                still: false,
                 bearing: None,
                 landed: Touchdown::default(),
                 landing: Touchdown::default(),
@@ -394,15 +399,18 @@ impl ContactSet {
         self.met.push(true);
     }
 
-    /// Hands each pair's landing on ([`crate::impact`]): `hand_on`, given the pair's contact and
-    /// how the last step's contact landed it, returns the contact's bounce speed and how it
-    /// lands the pair, handed on to the next step by
+    /// Hands each pair's landing on ([`crate::impact`]): `hand_on`, given the pair's contact,
+    /// how the last step's contact landed it and whether the pair was kept still in this pass,
+    /// returns the contact's bounce speed and how it lands the pair, handed on to the next step by
     /// [`ContactSet::end_step`]. A kept bearing part made with another bounce speed is dropped.
     /// Another collision pass before the step ends (`World::prepare_step`, then the step)
     /// hands on the same landing again.
-    pub(crate) fn hand_on_impacts(&mut self, hand_on: impl Fn(&Contact, Touchdown) -> HandedOn) {
+    pub(crate) fn hand_on_impacts(
+        &mut self,
+        hand_on: impl Fn(&Contact, Touchdown, bool) -> HandedOn,
+    ) {
         for Entry { contact, state } in &mut self.entries {
-            let handed = hand_on(contact, state.landed);
+            let handed = hand_on(contact, state.landed, state.still);
             if contact.bounce_speed != handed.bounce_speed {
                 contact.bounce_speed = handed.bounce_speed;
                 state.bearing = None;
