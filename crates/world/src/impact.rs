@@ -551,6 +551,72 @@ mod tests {
         (world.bodies().to_vec(), contact)
     }
 
+    /// [`Impacts::may_close`] bounds every point's approach: over random pairs of a box moving
+    /// and spinning above a floor or another moving box, under gravity or not, with points at
+    /// random gaps around a turned frame, whenever some point still apart closes its gap in the
+    /// step by its own approach (the test [`Impacts::landing`] makes), the bound says it may.
+    #[test]
+    fn the_bound_on_closing_never_passes_over_a_point_that_closes() {
+        use proptest::prelude::*;
+        let vector = || prop::array::uniform3(-3.0..3.0f64);
+        proptest!(ProptestConfig::with_cases(512), |(
+            (velocity, spin, other_velocity, other_spin) in (vector(), vector(), vector(), vector()),
+            moving_floor in any::<bool>(),
+            under_gravity in any::<bool>(),
+            normal in vector(),
+            spots in prop::collection::vec(((-0.6..0.6f64, -0.6..0.6f64), -0.05..0.002f64), 1..8),
+        )| {
+            let normal = Vector3::from(normal);
+            prop_assume!(normal.norm() > 0.1);
+            let floor = if moving_floor {
+                BodyDesc::dynamic(Shape::cuboid([1.0; 3]))
+                    .velocity(other_velocity)
+                    .angular_velocity(other_spin)
+            } else {
+                BodyDesc::fixed(Shape::cuboid([4.0, 4.0, 1.0]))
+            };
+            let world = World::builder()
+                .body(floor.position([0.1, -0.2, 0.0]))
+                .body(
+                    BodyDesc::dynamic(Shape::cuboid([0.6, 0.4, 0.8]))
+                        .position([0.0, 0.0, 1.0])
+                        .velocity(velocity)
+                        .angular_velocity(spin),
+                )
+                .build()
+                .expect("a valid scene");
+            let bodies = world.bodies();
+            let (plane, depths): (Vec<Point2<f64>>, Vec<f64>) =
+                spots.iter().map(|&((x, y), depth)| (Point2::new(x, y), depth)).unzip();
+            let Ok(support) = ConvexPolygon::from_points(&plane) else {
+                return Ok(());
+            };
+            let depths: Vec<f64> = (0..support.vertices().len()).map(|k| depths[k % depths.len()]).collect();
+            let contact = Contact {
+                body_a: BodyId(1),
+                body_b: BodyId(0),
+                centre_a: bodies[1].centre_of_mass(),
+                centre_b: bodies[0].centre_of_mass(),
+                frame: ContactFrame::from_normal(Point3::new(0.05, 0.02, 0.55), normal)
+                    .expect("a frame"),
+                support,
+                depths,
+                material: Material::new(0.5, 0.5, 0.0).expect("a material"),
+                landing: vec![tatami_contact::Landing { point: Point2::new(0.3, -0.7), depth: -0.01 }],
+                bounce_speed: 0.0,
+            };
+            let gravity = if under_gravity { Vector3::new(0.0, 0.0, -9.81) } else { Vector3::zeros() };
+            let settings = ContactSettings::default();
+            let impacts = Impacts { bodies, gravity: &gravity, dt: DT, settings: &settings };
+            let pull = impacts.closing_pull(&contact);
+            let closes = points(&contact).any(|(point, &depth)| {
+                !settings.has_landed(depth)
+                    && (impacts.approach(&contact, point) + pull * DT) * DT >= -depth
+            });
+            prop_assert!(!closes || impacts.may_close(&contact, pull));
+        });
+    }
+
     /// Without gravity the speed met at is the approach; with it, the integrator's: from the
     /// kept quantity `(v − a dt/2)²/2 + a x` at the gap and at the surface.
     #[test]
