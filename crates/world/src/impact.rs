@@ -106,20 +106,27 @@ impl Impacts<'_> {
     /// restitution 0.9 thrown at each other parted with up to 1.44 times their energy).
     ///
     /// Without restitution only where it met ([`Touchdown::arms`], its speed 0): the rest of
-    /// the stop acts there ([`bounce_where_landed`]). Its pairs are most of a scene's, so those
-    /// whose points cannot close their gaps in the step are passed over first
-    /// ([`Impacts::may_close`]).
+    /// the stop acts there ([`bounce_where_landed`]). Its pairs are most of a scene's, so a
+    /// pair kept `still` in the collision pass (its bodies have not moved by the reuse
+    /// tolerance since its contact was found: it meets at no speed that would tell), and one
+    /// whose points cannot close their gaps in the step ([`Impacts::may_close`]), are passed
+    /// over first.
     pub(crate) fn landing(
         &self,
         contact: &Contact,
         met: Touchdown,
         bounce_speed: f64,
+        still: bool,
     ) -> Touchdown {
         if bounce_speed > 0.0 {
             return Touchdown::default();
         }
+        let inelastic = contact.material.restitution == 0.0;
+        if inelastic && still {
+            return Touchdown::default();
+        }
         let (pull, dt, settings) = (self.closing_pull(contact), self.dt, self.settings);
-        if contact.material.restitution == 0.0 && !self.may_close(contact, pull) {
+        if inelastic && !self.may_close(contact, pull) {
             return Touchdown::default();
         }
         // The speed a point at `gap` approaching at `approach` meets the other body at.
@@ -145,7 +152,7 @@ impl Impacts<'_> {
         let gap = closing.iter().map(|(_, gap, _)| gap).sum::<f64>() / count;
         let speed = met_at(self.approach(contact, &centroid), gap);
         let arms = Some(self.arms_at_impact(contact, &centroid, gap, speed));
-        if contact.material.restitution == 0.0 {
+        if inelastic {
             // Nothing to bounce: only where the impact ends.
             return Touchdown {
                 arms,
@@ -472,7 +479,6 @@ pub(crate) fn bounce_where_landed(
     }
 }
 
-/// `contact`'s support points and landing points, each with its depth.
 /// Widest turn (rad) of a body in a step for [`bounce_where_landed`] to tell the point that
 /// landed from its neighbours: a turn of `θ` may move a point by `θ` times its arm, and past a
 /// quarter of it, a cube's arm to its corner (0.87 of its edge) grows as far as the corner's
@@ -481,6 +487,7 @@ pub(crate) fn bounce_where_landed(
 /// sank 17 cm into each other.
 const MAX_LANDING_TURN: f64 = 0.25;
 
+/// `contact`'s support points and landing points, each with its depth.
 fn points(contact: &Contact) -> impl Iterator<Item = (&Point2<f64>, &f64)> {
     support_points(contact).chain(contact.landing.iter().map(|l| (&l.point, &l.depth)))
 }
@@ -518,7 +525,9 @@ mod tests {
             stopping: bodies[1].mass() * met_at * met_at,
             ..Touchdown::default()
         };
-        impacts.landing(contact, met, contact.bounce_speed).speed
+        impacts
+            .landing(contact, met, contact.bounce_speed, false)
+            .speed
     }
 
     /// A ball falling at `speed` onto a fixed floor, its contact at `depth` along a normal

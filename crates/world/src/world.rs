@@ -13,7 +13,7 @@ use crate::body::{BodyKind, Motion};
 use crate::bounce_guard::BounceGuard;
 use crate::collision::{self, BodyGeometry, CollisionSettings, CollisionWorkspace};
 use crate::contact_set::{ContactSet, HandedOn, rows_of};
-use crate::impact::{self, Impacts, Touchdown};
+use crate::impact::{self, Impacts};
 use crate::parallel;
 use crate::parry_bridge::Collider;
 use crate::press::Presses;
@@ -361,10 +361,6 @@ impl World {
         };
         self.contact_set.hand_on_impacts(|contact, met, still| {
             let bounce_speed = impacts.bounce_speed(contact, met);
-            // Without restitution a landing only says where the stop acts, and a pair whose
-            // bodies have not moved by the reuse tolerance since its contact was found (most
-            // of a resting scene's) meets at no speed that would tell.
-            let inelastic_and_still = still && contact.material.restitution == 0.0;
             HandedOn {
                 bounce_speed,
                 bounce_energy: if bounce_speed > 0.0 {
@@ -372,11 +368,7 @@ impl World {
                 } else {
                     0.0
                 },
-                landing: if inelastic_and_still {
-                    Touchdown::default()
-                } else {
-                    impacts.landing(contact, met, bounce_speed)
-                },
+                landing: impacts.landing(contact, met, bounce_speed, still),
             }
         });
     }
