@@ -47,7 +47,7 @@
 
 use nalgebra::{Point2, Vector2, Vector3};
 use tatami_geometry::{ConvexPolygon, PolygonKind, Sector};
-use tatami_lcp::{Block, LinearSet, Problem, Projection, Row, RowBound, SolverBody, TwistCoupling};
+use tatami_lcp::{Block, LinearSet, Projection, Row, RowBound, SolverBody, TwistCoupling};
 
 use crate::bearing::{bearing_depth, bearing_part};
 use crate::jacobian::{angular_jacobian, block_friction_motion, point_jacobian, twist_rate};
@@ -56,8 +56,8 @@ use crate::segment::SegmentProjection;
 use crate::target::normal_target;
 use crate::vertex;
 use crate::{
-    Contact, ContactError, ContactProjection, ContactSettings, FrictionCone, FrictionLimit,
-    TwistCentre, TwistRadius,
+    Contact, ContactError, ContactProjection, ContactRows, ContactSettings, FrictionCone,
+    FrictionLimit, TwistCentre, TwistRadius,
 };
 
 /// Rows of a face constraint.
@@ -458,7 +458,7 @@ fn bearing_of_checked(
 }
 
 /// Appends one 6-row block at the centroid of the support polygon's bearing part
-/// ([`bearing_contact`]) and each row's penetration bias to `biases` —
+/// ([`bearing_contact`]) and each row's penetration bias to `out` —
 /// for a segment the 5-row block of [`crate::segment`] (but with the parallel-torque variant,
 /// which reads both tilts), for a point support the vertex model's 3-row block (see the module
 /// doc); then, when that part is not all of the polygon, a landing block for each vertex off
@@ -470,8 +470,7 @@ pub(crate) fn build(
     cut: Option<&Bearing>,
     dt: f64,
     settings: &ContactSettings,
-    problem: &mut Problem<ContactProjection>,
-    biases: &mut Vec<f64>,
+    out: &mut ContactRows<'_>,
 ) {
     let fresh;
     let (bearing, within) = match cut {
@@ -482,7 +481,7 @@ pub(crate) fn build(
             (fresh.as_ref(), within)
         }
     };
-    build_bearing(bearing.unwrap_or(contact), dt, settings, problem, biases);
+    build_bearing(bearing.unwrap_or(contact), dt, settings, out);
     if bearing.is_some() {
         // The landing blocks (module doc): each vertex off the bearing part at its depth below
         // the part's edge, as a gap its normal row may close in this step and no more.
@@ -491,23 +490,16 @@ pub(crate) fn build(
             if depth < cut {
                 let gap = depth - vertex::landing_level(cut);
                 let at = (vertex, gap, contact.bounce_speed);
-                vertex::build_point(contact, at, None, dt, settings, problem, biases);
+                vertex::build_point(contact, at, None, dt, settings, out);
             }
         }
     }
     // The vertices of the bearing part that a tipping support sinks, and the contact's landing
     // points beside its support (a rim beside its lowest point; module doc): each may come
     // down to the support's deepest level in this step and no further.
-    let tipping = tipping_vertices(bearing.unwrap_or(contact), &problem.bodies, dt, settings);
+    let tipping = tipping_vertices(bearing.unwrap_or(contact), out.bodies, dt, settings);
     let landing = contact.landing.iter().map(|l| (&l.point, &l.depth));
-    vertex::build_landing(
-        contact,
-        tipping.chain(landing),
-        dt,
-        settings,
-        problem,
-        biases,
-    );
+    vertex::build_landing(contact, tipping.chain(landing), dt, settings, out);
 }
 
 /// The vertices of `contact`'s support (with their depths) that the bodies' relative turn
@@ -538,11 +530,10 @@ fn build_bearing(
     contact: &Contact,
     dt: f64,
     settings: &ContactSettings,
-    problem: &mut Problem<ContactProjection>,
-    biases: &mut Vec<f64>,
+    out: &mut ContactRows<'_>,
 ) {
     if contact.support.kind() == PolygonKind::Point {
-        return vertex::build_support(contact, dt, settings, problem, biases);
+        return vertex::build_support(contact, dt, settings, out);
     }
     let frame = &contact.frame;
     // A segment takes its 5-row block (crate::segment): the tilt axis across it and the tilt
@@ -563,8 +554,8 @@ fn build_bearing(
     let p = frame.to_world(&centre);
     // A face on a face keeps its material points together while they stick; an edge may roll.
     let (normal_speed, slip, weld) =
-        block_friction_motion(contact, &problem.bodies, &p, dt, settings.slip_threshold);
-    let twist_rate = twist_rate(contact, &problem.bodies);
+        block_friction_motion(contact, out.bodies, &p, dt, settings.slip_threshold);
+    let twist_rate = twist_rate(contact, out.bodies);
     let r_bar = match settings.twist_radius {
         TwistRadius::Exact => contact.support.centroid_mean_distance(),
         TwistRadius::Grid { spacing } => contact.support.mean_distance_grid(&centre, spacing),
@@ -586,7 +577,7 @@ fn build_bearing(
         None => &face_axes,
     };
     let rows = 3 + torque_axes.len();
-    let start = problem.rows.len();
+    let start = out.rows.len();
     let forces = [
         (point_jacobian(contact, &p, &frame.normal), target.velocity),
         (
@@ -599,7 +590,7 @@ fn build_bearing(
         ),
     ];
     let torques = torque_axes.iter().map(|axis| (angular_jacobian(axis), 0.0));
-    problem.rows.extend(
+    out.rows.extend(
         forces
             .into_iter()
             .chain(torques)
@@ -609,8 +600,8 @@ fn build_bearing(
                 impulse: 0.0,
             }),
     );
-    biases.push(target.bias);
-    biases.extend(std::iter::repeat_n(0.0, rows - 1));
+    out.biases.push(target.bias);
+    out.biases.extend(std::iter::repeat_n(0.0, rows - 1));
     let friction = material.friction(slip, settings.slip_threshold);
     let twist_per_normal = twist_friction * r_bar;
     let projection = match segment {
@@ -636,7 +627,7 @@ fn build_bearing(
             clearance: contact.support.clearance(&centre),
         }),
     };
-    problem.blocks.push(Block {
+    out.blocks.push(Block {
         body_a: contact.body_a,
         body_b: contact.body_b,
         rows: start..start + rows,
@@ -647,7 +638,7 @@ fn build_bearing(
 #[cfg(test)]
 mod tests {
     use nalgebra::Point3;
-    use tatami_lcp::{BodyId, SolverBody};
+    use tatami_lcp::{BodyId, Problem, SolverBody};
 
     use super::*;
     use crate::{BEARING_DEPTH, ContactFrame, ContactModel, Landing, Material};

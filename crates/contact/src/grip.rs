@@ -59,7 +59,9 @@ use tatami_lcp::{Block, LinearSet, Problem, Projection, Row, RowBound, TwistCoup
 
 use crate::jacobian::{angular_jacobian, block_friction_motion, point_jacobian};
 use crate::limit_surface::{LimitSurface, is_coupled};
-use crate::{Contact, ContactProjection, ContactSettings, FrictionCone, FrictionLimit};
+use crate::{
+    Contact, ContactProjection, ContactRows, ContactSettings, FrictionCone, FrictionLimit,
+};
 
 /// The projection of a grip's rows: friction `[f1, f2]` within `friction` (the cone's shape
 /// from the settings), then, if the block has it, a twist within `±twist`.
@@ -181,12 +183,26 @@ pub fn build(
     problem: &mut Problem<ContactProjection>,
     biases: &mut Vec<f64>,
 ) -> bool {
+    build_rows(
+        contact,
+        excess,
+        dt,
+        settings,
+        &mut ContactRows::of(problem, biases),
+    )
+}
+
+/// As [`build`], appending to `out`.
+pub fn build_rows(
+    contact: &Contact,
+    excess: f64,
+    dt: f64,
+    settings: &ContactSettings,
+    out: &mut ContactRows<'_>,
+) -> bool {
     let frame = &contact.frame;
     let centroid = frame.to_world(&contact.support.centroid());
-    let (a, b) = (
-        &problem.bodies[contact.body_a.0],
-        &problem.bodies[contact.body_b.0],
-    );
+    let (a, b) = (&out.bodies[contact.body_a.0], &out.bodies[contact.body_b.0]);
     let inverse_mass = point_jacobian(contact, &centroid, &frame.normal).inverse_mass(a, b);
     // A NaN depth or mass is not `> 0` and adds no grip.
     if !(excess > 0.0 && inverse_mass > 0.0 && dt > 0.0) {
@@ -196,16 +212,11 @@ pub fn build(
     // As the model's own friction rows: on a face, the relative velocity that keeps the two
     // bodies' points together over the step while they turn together (a hand turning what
     // it holds), else no slip.
-    let (_, slip, weld) = block_friction_motion(
-        contact,
-        &problem.bodies,
-        &centroid,
-        dt,
-        settings.slip_threshold,
-    );
+    let (_, slip, weld) =
+        block_friction_motion(contact, out.bodies, &centroid, dt, settings.slip_threshold);
     let mu = contact.material.friction(slip, settings.slip_threshold);
     let twist_radius = contact.support.centroid_mean_distance();
-    let start = problem.rows.len();
+    let start = out.rows.len();
     let mut directions = vec![
         (
             point_jacobian(contact, &centroid, &frame.tangent1),
@@ -220,15 +231,14 @@ pub fn build(
         directions.push((angular_jacobian(&frame.normal), 0.0));
     }
     let rows = directions.len();
-    problem
-        .rows
+    out.rows
         .extend(directions.into_iter().map(|(jacobian, target)| Row {
             jacobian,
             target,
             impulse: 0.0,
         }));
-    biases.extend(std::iter::repeat_n(0.0, rows));
-    problem.blocks.push(Block {
+    out.biases.extend(std::iter::repeat_n(0.0, rows));
+    out.blocks.push(Block {
         body_a: contact.body_a,
         body_b: contact.body_b,
         rows: start..start + rows,

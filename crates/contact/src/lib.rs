@@ -80,6 +80,7 @@ pub mod patch;
 pub mod planar_sliding;
 mod point_friction;
 mod projection;
+mod rows;
 pub mod segment;
 mod settings;
 mod target;
@@ -94,6 +95,7 @@ pub use material::Material;
 pub use model::ContactModel;
 pub use point_friction::PointFriction;
 pub use projection::ContactProjection;
+pub use rows::ContactRows;
 pub use settings::{
     ContactSettings, DEFAULT_BIAS_RATE, DEFAULT_MAX_DEPENETRATION_SPEED, DEFAULT_MAX_VELOCITY_BIAS,
     DEFAULT_SLOP, FrictionCone, FrictionLimit, TwistCentre, TwistRadius,

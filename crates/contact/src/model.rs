@@ -2,7 +2,9 @@
 
 use tatami_lcp::Problem;
 
-use crate::{Contact, ContactError, ContactProjection, ContactSettings, face, patch, vertex};
+use crate::{
+    Contact, ContactError, ContactProjection, ContactRows, ContactSettings, face, patch, vertex,
+};
 
 /// Which rows a contact becomes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -88,14 +90,34 @@ impl ContactModel {
         problem: &mut Problem<ContactProjection>,
         biases: &mut Vec<f64>,
     ) -> Result<(), ContactError> {
+        self.build_rows(
+            contact,
+            bearing,
+            dt,
+            settings,
+            &mut ContactRows::of(problem, biases),
+        )
+    }
+
+    /// As [`ContactModel::build_split_bearing`], appending to `out`: rows, blocks and biases
+    /// that may be a piece of the problem built apart from the rest (on another thread, say)
+    /// against the same bodies, and joined to it afterwards ([`ContactRows::append`]).
+    pub fn build_rows(
+        self,
+        contact: &Contact,
+        bearing: Option<&face::Bearing>,
+        dt: f64,
+        settings: &ContactSettings,
+        out: &mut ContactRows<'_>,
+    ) -> Result<(), ContactError> {
         if !(dt.is_finite() && dt > 0.0) {
             return Err(ContactError::InvalidTimeStep(dt));
         }
-        contact.validate(problem.bodies.len())?;
+        contact.validate(out.bodies.len())?;
         match self {
-            Self::Vertex => vertex::build(contact, dt, settings, problem, biases),
-            Self::Patch => patch::build(contact, dt, settings, problem, biases),
-            Self::Face => face::build(contact, bearing, dt, settings, problem, biases),
+            Self::Vertex => vertex::build(contact, dt, settings, out),
+            Self::Patch => patch::build(contact, dt, settings, out),
+            Self::Face => face::build(contact, bearing, dt, settings, out),
         }
         Ok(())
     }

@@ -4,14 +4,14 @@
 //! `dᵢ = |vᵢ − c|`. One block of `k + 3` rows.
 
 use nalgebra::Point2;
-use tatami_lcp::{Block, LinearSet, Problem, Projection, Row, RowBound};
+use tatami_lcp::{Block, LinearSet, Projection, Row, RowBound};
 
 use crate::jacobian::{
     angular_jacobian, block_friction_motion, point_jacobian, point_motion, twist_rate,
 };
 use crate::target::normal_target;
 use crate::vertex;
-use crate::{Contact, ContactProjection, ContactSettings, FrictionCone};
+use crate::{Contact, ContactProjection, ContactRows, ContactSettings, FrictionCone};
 
 /// The projection of a patch block: rows `λ₁…λₖ` (normals), then `f1, f2, τ`.
 #[derive(Debug, Clone, PartialEq)]
@@ -76,22 +76,21 @@ impl Projection for PatchProjection {
 
 /// Appends the patch block, then the vertex model's block for each landing point
 /// ([`vertex::build_landing`]: as under the face model, a cylinder on one rim point has the
-/// rim beside it held), and each row's penetration bias to `biases`. The contact must be
+/// rim beside it held), and each row's penetration bias to `out`. The contact must be
 /// validated.
 pub(crate) fn build(
     contact: &Contact,
     dt: f64,
     settings: &ContactSettings,
-    problem: &mut Problem<ContactProjection>,
-    biases: &mut Vec<f64>,
+    out: &mut ContactRows<'_>,
 ) {
     let frame = &contact.frame;
     let vertices = contact.support.vertices();
     let centre = friction_centre(contact);
-    let start = problem.rows.len();
+    let start = out.rows.len();
     for (vertex, &depth) in vertices.iter().zip(&contact.depths) {
         let p = frame.to_world(vertex);
-        let (normal_speed, _) = point_motion(contact, &problem.bodies, &p);
+        let (normal_speed, _) = point_motion(contact, out.bodies, &p);
         let target = normal_target(
             depth,
             normal_speed,
@@ -100,21 +99,21 @@ pub(crate) fn build(
             dt,
             settings,
         );
-        problem.rows.push(Row {
+        out.rows.push(Row {
             jacobian: point_jacobian(contact, &p, &frame.normal),
             target: target.velocity,
             impulse: 0.0,
         });
-        biases.push(target.bias);
+        out.biases.push(target.bias);
     }
-    biases.extend([0.0; 3]);
+    out.biases.extend([0.0; 3]);
     let c = frame.to_world(&centre);
     // A face on a face keeps its material points together while they stick.
     let (_, slip, weld) =
-        block_friction_motion(contact, &problem.bodies, &c, dt, settings.slip_threshold);
+        block_friction_motion(contact, out.bodies, &c, dt, settings.slip_threshold);
     let distances: Vec<f64> = vertices.iter().map(|v| (v - centre).norm()).collect();
     let mean_distance = distances.iter().sum::<f64>() / distances.len() as f64;
-    let twist_rate = twist_rate(contact, &problem.bodies);
+    let twist_rate = twist_rate(contact, out.bodies);
     for (jacobian, target) in [
         (
             point_jacobian(contact, &c, &frame.tangent1),
@@ -126,17 +125,17 @@ pub(crate) fn build(
         ),
         (angular_jacobian(&frame.normal), 0.0),
     ] {
-        problem.rows.push(Row {
+        out.rows.push(Row {
             jacobian,
             target,
             impulse: 0.0,
         });
     }
     let material = &contact.material;
-    problem.blocks.push(Block {
+    out.blocks.push(Block {
         body_a: contact.body_a,
         body_b: contact.body_b,
-        rows: start..problem.rows.len(),
+        rows: start..out.rows.len(),
         projection: ContactProjection::Patch(PatchProjection {
             friction: material.friction(slip, settings.slip_threshold),
             twist_friction: material.friction(twist_rate * mean_distance, settings.slip_threshold),
@@ -145,7 +144,7 @@ pub(crate) fn build(
         }),
     });
     let landing = contact.landing.iter().map(|l| (&l.point, &l.depth));
-    vertex::build_landing(contact, landing, dt, settings, problem, biases);
+    vertex::build_landing(contact, landing, dt, settings, out);
 }
 
 /// The friction centre of a patch: the average of the support vertices (plane coordinates).

@@ -10,42 +10,40 @@
 //! stack of three 3 cm cylinders dropped 3 mm at 60 Hz went through the floor.
 
 use nalgebra::{Point2, Vector3};
-use tatami_lcp::{Block, Problem, Row};
+use tatami_lcp::{Block, Row};
 
 use crate::jacobian::{face_weld, friction_motion, point_jacobian};
 use crate::target::normal_target;
-use crate::{Contact, ContactProjection, ContactSettings, PointFriction};
+use crate::{Contact, ContactProjection, ContactRows, ContactSettings, PointFriction};
 
 /// Rows per support vertex.
 pub const ROWS_PER_VERTEX: usize = 3;
 
 /// Appends one block per support vertex, then one per landing point ([`build_landing`]), and
-/// each row's penetration bias to `biases`. The contact must be validated.
+/// each row's penetration bias to `out`. The contact must be validated.
 pub(crate) fn build(
     contact: &Contact,
     dt: f64,
     settings: &ContactSettings,
-    problem: &mut Problem<ContactProjection>,
-    biases: &mut Vec<f64>,
+    out: &mut ContactRows<'_>,
 ) {
-    build_support(contact, dt, settings, problem, biases);
+    build_support(contact, dt, settings, out);
     let landing = contact.landing.iter().map(|l| (&l.point, &l.depth));
-    build_landing(contact, landing, dt, settings, problem, biases);
+    build_landing(contact, landing, dt, settings, out);
 }
 
-/// Appends one block per support vertex and each row's penetration bias to `biases` (the face
+/// Appends one block per support vertex and each row's penetration bias to `out` (the face
 /// model's block for a point support too).
 pub(crate) fn build_support(
     contact: &Contact,
     dt: f64,
     settings: &ContactSettings,
-    problem: &mut Problem<ContactProjection>,
-    biases: &mut Vec<f64>,
+    out: &mut ContactRows<'_>,
 ) {
-    let weld = face_weld(contact, &problem.bodies, dt, settings.slip_threshold);
+    let weld = face_weld(contact, out.bodies, dt, settings.slip_threshold);
     for (vertex, &depth) in contact.support.vertices().iter().zip(&contact.depths) {
         let at = (vertex, depth, contact.bounce_speed);
-        build_point(contact, at, weld.as_ref(), dt, settings, problem, biases);
+        build_point(contact, at, weld.as_ref(), dt, settings, out);
     }
 }
 
@@ -58,21 +56,12 @@ pub(crate) fn build_landing<'a>(
     points: impl Iterator<Item = (&'a Point2<f64>, &'a f64)>,
     dt: f64,
     settings: &ContactSettings,
-    problem: &mut Problem<ContactProjection>,
-    biases: &mut Vec<f64>,
+    out: &mut ContactRows<'_>,
 ) {
     let deepest = landing_level(contact.depth());
     for (point, &depth) in points {
         let gap = (depth - deepest).min(0.0);
-        build_point(
-            contact,
-            (point, gap, 0.0),
-            None,
-            dt,
-            settings,
-            problem,
-            biases,
-        );
+        build_point(contact, (point, gap, 0.0), None, dt, settings, out);
     }
 }
 
@@ -98,14 +87,13 @@ pub(crate) fn build_point(
     weld: Option<&Vector3<f64>>,
     dt: f64,
     settings: &ContactSettings,
-    problem: &mut Problem<ContactProjection>,
-    biases: &mut Vec<f64>,
+    out: &mut ContactRows<'_>,
 ) {
     let frame = &contact.frame;
     let p = frame.to_world(vertex);
     let (normal_speed, slip, weld) =
-        friction_motion(contact, &problem.bodies, &p, weld, settings.slip_threshold);
-    let start = problem.rows.len();
+        friction_motion(contact, out.bodies, &p, weld, settings.slip_threshold);
+    let start = out.rows.len();
     let target = normal_target(
         depth,
         normal_speed,
@@ -119,14 +107,14 @@ pub(crate) fn build_point(
         (frame.tangent1, weld.dot(&frame.tangent1)),
         (frame.tangent2, weld.dot(&frame.tangent2)),
     ] {
-        problem.rows.push(Row {
+        out.rows.push(Row {
             jacobian: point_jacobian(contact, &p, &direction),
             target,
             impulse: 0.0,
         });
     }
-    biases.extend([target.bias, 0.0, 0.0]);
-    problem.blocks.push(Block {
+    out.biases.extend([target.bias, 0.0, 0.0]);
+    out.blocks.push(Block {
         body_a: contact.body_a,
         body_b: contact.body_b,
         rows: start..start + ROWS_PER_VERTEX,

@@ -17,6 +17,7 @@ use crate::carry::CarryBounds;
 use crate::contact_set::{Computed, ContactSet, Recycled};
 use crate::parallel;
 use crate::parry_bridge::{self, Cast, Collider};
+use crate::rows;
 use crate::shape::Shape;
 use crate::speculative::Travel;
 use crate::support::{Feature, FeatureAngle, Outline, Support, VertexIds, support};
@@ -143,6 +144,12 @@ impl CollisionSettings {
 /// Brings `set` up to date for a step of `dt`: one contact per pair closer than the margin
 /// grown by how far the pair may close in the step ([`crate::speculative`]), ordered from the
 /// highest to the lowest along `gravity`, its support vertices named as the settings ask.
+/// Returns the pool's helpers kept spinning ([`parallel::Warm`]) when they worked on this pass's
+/// pairs and the set holds enough pairs for its rows to be worth building on every core
+/// ([`rows::worth_every_core`]): started before the set's end, while the helpers are still
+/// awake, so the rows stage finds them so. A pass on the calling thread alone (a scene at rest)
+/// leaves them asleep, and the rows on that thread too: a helper woken for them took longer to
+/// start than the 210-cube pyramid's rows take.
 pub(crate) fn detect(
     bodies: &[Body],
     geometry: &[BodyGeometry],
@@ -151,7 +158,7 @@ pub(crate) fn detect(
     dt: f64,
     workspace: &mut CollisionWorkspace,
     set: &mut ContactSet,
-) {
+) -> Option<parallel::Warm> {
     let &CollisionSettings {
         margin,
         feature_angle,
@@ -249,7 +256,8 @@ pub(crate) fn detect(
     let compute_into = |features: &mut Features, (pair, out): &mut ((usize, usize), _)| {
         *out = find(features, *pair, Recycled::default());
     };
-    if new.len() >= PARALLEL_PAIRS {
+    let new_on_every_core = new.len() >= PARALLEL_PAIRS;
+    if new_on_every_core {
         parallel::for_each(new, Features::default, compute_into);
     } else {
         for slot in new.iter_mut() {
@@ -263,7 +271,11 @@ pub(crate) fn detect(
             Found::Nothing => {}
         }
     }
+    let helpers_awake = on_every_core || new_on_every_core;
+    let warm =
+        (helpers_awake && rows::worth_every_core(set.contacts().len())).then(parallel::Warm::start);
     set.end(gravity);
+    warm
 }
 
 /// How far from each other a pair's contact is looked for in a pass ([`speculative`]).

@@ -209,6 +209,38 @@ struct Entry {
     state: PairState,
 }
 
+/// One pair of the set while its rows are built ([`ContactSet::build_in_runs`]).
+pub(crate) struct PairRows<'a> {
+    entry: &'a mut Entry,
+}
+
+impl PairRows<'_> {
+    /// The pair's contact.
+    pub(crate) fn contact(&self) -> &Contact {
+        &self.entry.contact
+    }
+
+    /// How the pair landed in the last step, which its bounce in this step is from
+    /// ([`crate::impact`]).
+    pub(crate) fn landed(&self) -> Touchdown {
+        self.entry.state.landed
+    }
+
+    /// The contact and its face-model [`Bearing`] under `settings` (an error for depths that
+    /// are not one finite value per support vertex), cut only when the contact (or the slop)
+    /// changed since it was last asked for: a resting pair's is cut once.
+    pub(crate) fn with_bearing(
+        &mut self,
+        settings: &ContactSettings,
+    ) -> (&Contact, Result<&Bearing, ContactError>) {
+        let entry = &mut *self.entry;
+        let kept = entry.state.bearing.take().filter(|b| b.is_for(settings));
+        let bearing = kept.map_or_else(|| Bearing::of(&entry.contact, settings), Ok);
+        let bearing = bearing.map(|bearing| &*entry.state.bearing.insert(bearing));
+        (&entry.contact, bearing)
+    }
+}
+
 /// Every touching pair, in Gauss–Seidel order.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct ContactSet {
@@ -420,12 +452,6 @@ impl ContactSet {
         }
     }
 
-    /// How the pair at `index` landed in the last step, which its bounce in this step is
-    /// from ([`crate::impact`]).
-    pub(crate) fn landed(&self, index: usize) -> Option<Touchdown> {
-        self.entries.get(index).map(|e| e.state.landed)
-    }
-
     /// The pairs that bounce in this step, each with the energy (J) its landing took
     /// ([`HandedOn::bounce_energy`]).
     pub(crate) fn bounces(&self) -> impl Iterator<Item = (&Contact, f64)> {
@@ -515,19 +541,45 @@ impl ContactSet {
             .map(|e| (&e.contact, e.state.blocks.clone()))
     }
 
-    /// The contact at `index` and its face-model [`Bearing`] under `settings` (an error for
-    /// depths that are not one finite value per support vertex), cut only when the contact
-    /// (or the slop) changed since it was last asked for: a resting pair's is cut once.
-    pub(crate) fn with_bearing(
+    /// Hands every pair to `front` or `back` with its index, in runs of `run` pairs, the `k`th
+    /// run with `pieces[k]` (there must be a piece per run): the calling thread's `front` takes
+    /// runs from the first on, in order, and, when `on_every_core`, the pool's helpers' `back`
+    /// from the last ([`parallel::from_both_ends`]) until they meet. Returns how many runs the
+    /// front took. A run's pairs are handed in order, whichever side takes it.
+    pub(crate) fn build_in_runs<P: Send>(
         &mut self,
-        index: usize,
-        settings: &ContactSettings,
-    ) -> Option<(&Contact, Result<&Bearing, ContactError>)> {
-        let entry = self.entries.get_mut(index)?;
-        let kept = entry.state.bearing.take().filter(|b| b.is_for(settings));
-        let bearing = kept.map_or_else(|| Bearing::of(&entry.contact, settings), Ok);
-        let bearing = bearing.map(|bearing| &*entry.state.bearing.insert(bearing));
-        Some((&entry.contact, bearing))
+        pieces: &mut [P],
+        run: usize,
+        on_every_core: bool,
+        mut front: impl FnMut(&mut P, usize, PairRows<'_>),
+        back: impl Fn(&mut P, usize, PairRows<'_>) + Sync,
+    ) -> usize {
+        let run = run.max(1);
+        assert!(
+            pieces.len() >= self.entries.len().div_ceil(run),
+            "a piece per run"
+        );
+        let mut runs: Vec<(usize, &mut [Entry], &mut P)> = (self.entries.chunks_mut(run))
+            .zip(pieces)
+            .enumerate()
+            .map(|(k, (entries, piece))| (k * run, entries, piece))
+            .collect();
+        let mut front = |(first, entries, piece): &mut (usize, &mut [Entry], &mut P)| {
+            for (k, entry) in entries.iter_mut().enumerate() {
+                front(piece, *first + k, PairRows { entry });
+            }
+        };
+        if on_every_core {
+            let back = |(first, entries, piece): &mut (usize, &mut [Entry], &mut P)| {
+                for (k, entry) in entries.iter_mut().enumerate() {
+                    back(piece, *first + k, PairRows { entry });
+                }
+            };
+            parallel::from_both_ends(&mut runs, front, back)
+        } else {
+            runs.iter_mut().for_each(&mut front);
+            runs.len()
+        }
     }
 
     /// Records that the contact at `index` took `blocks` of this step's problem.

@@ -38,6 +38,7 @@ mod parry_bridge;
 mod press;
 mod rewind;
 mod rotation;
+mod rows;
 mod sat;
 pub mod scene;
 mod settings;

@@ -4,7 +4,7 @@ use std::ops::Range;
 use std::time::Instant;
 
 use nalgebra::Vector3;
-use tatami_contact::{Contact, ContactModel, ContactProjection, grip};
+use tatami_contact::{Contact, ContactModel, ContactProjection, ContactRows};
 use tatami_lcp::direct::{self, DirectInfo};
 use tatami_lcp::pgs::{self, PgsParams, PgsWorkspace, Record, Support, WarmStart};
 use tatami_lcp::{DisjointSets, LcpError, Problem, Row, SolverBody};
@@ -13,11 +13,12 @@ use crate::body::{BodyKind, Motion};
 use crate::bounce_guard::BounceGuard;
 use crate::collision::{self, BodyGeometry, CollisionSettings, CollisionWorkspace};
 use crate::contact_set::{ContactSet, HandedOn, rows_of};
-use crate::impact::{self, Impacts};
+use crate::impact::Impacts;
 use crate::parallel;
 use crate::parry_bridge::Collider;
 use crate::press::Presses;
 use crate::rewind::{RewindWorkspace, StepMotion};
+use crate::rows::{RowInputs, RowRuns};
 use crate::sleep::{self, Islands};
 use crate::support::Outline;
 use crate::{
@@ -52,6 +53,8 @@ pub struct World {
     biases: Vec<f64>,
     /// The contacts kinematic bodies press in beyond the slop, for their grips.
     presses: Presses,
+    /// The rows stage's runs, kept between steps.
+    row_runs: RowRuns,
     /// Scratch: each moving body's state after the step, checked before it is committed.
     motions: Vec<(usize, Motion)>,
     /// Scratch of the pass that puts back fast pairs driven deep into each other.
@@ -99,6 +102,7 @@ impl World {
             problem: Problem::default(),
             biases: Vec::new(),
             presses: Presses::default(),
+            row_runs: RowRuns::default(),
             pseudo_velocities: Vec::new(),
             motions: Vec::new(),
             rewind: RewindWorkspace::default(),
@@ -255,10 +259,10 @@ impl World {
     pub fn step(&mut self, dt: f64) -> Result<(), StepError> {
         check_time_step(dt)?;
         let start = Instant::now();
-        self.detect(dt);
+        let warm = self.detect(dt);
         self.wake_islands();
         let collided = Instant::now();
-        self.build_problem(dt)?;
+        self.build_problem(dt, warm)?;
         let built = Instant::now();
         let solved = self.solve_and_correct(dt)?;
         let corrected = Instant::now();
@@ -299,9 +303,9 @@ impl World {
     /// ```
     pub fn prepare_step(&mut self, dt: f64) -> Result<&Problem<ContactProjection>, StepError> {
         check_time_step(dt)?;
-        self.detect(dt);
+        let warm = self.detect(dt);
         self.wake_islands();
-        self.build_problem(dt)?;
+        self.build_problem(dt, warm)?;
         Ok(&self.problem)
     }
 
@@ -330,13 +334,14 @@ impl World {
     }
 
     /// Collision: the contact set brought to the current positions for a step of `dt`,
-    /// highest contact first.
+    /// highest contact first; with the pool's helpers kept awake for the rows when those will
+    /// be built on every core (see [`collision::detect`]).
     ///
     /// A kinematic body sent to a target first gets the velocity that takes it there in the
     /// step, so its contacts are found over the step as any moving body's, speculatively: at
     /// rest until then, a bat sent 0.5 m a step (30 m/s at 60 Hz) at a 0.2 m cube was seen
     /// only once inside it, and passed through it under the vertex and patch models.
-    fn detect(&mut self, dt: f64) {
+    fn detect(&mut self, dt: f64) -> Option<parallel::Warm> {
         for body in &mut self.bodies {
             if let (BodyKind::Kinematic, Some((centre, rotation))) = (body.kind(), body.target) {
                 body.linear_velocity = (centre - body.centre) / dt;
@@ -344,7 +349,7 @@ impl World {
             }
         }
         let collision = CollisionSettings::of(&self.settings);
-        collision::detect(
+        let warm = collision::detect(
             &self.bodies,
             &self.geometry,
             &collision,
@@ -371,6 +376,7 @@ impl World {
                 landing: impacts.landing(contact, met, bounce_speed, still),
             }
         });
+        warm
     }
 
     /// Contact rows from the velocities at the start of the step, then gravity's impulse. A
@@ -379,13 +385,14 @@ impl World {
     /// ([`crate::press`]). A bounce acts where its landing met
     /// ([`impact::bounce_where_landed`]).
     ///
-    /// On one thread, in the contact set's order. Building them on both cores was measured: runs
-    /// of 16 contacts, each built into buffers of its own and then appended with their blocks'
-    /// row ranges shifted, cost as much in the copy as the second core saved (the 1000-cube
-    /// pile's row stage 0.94–0.97 ms on two threads against 0.88–0.93 ms here, and 1.23–1.29 ms
-    /// against 0.84–0.92 ms on one): a row and its block are a few hundred bytes, and the build
-    /// of a face, about 0.3 µs, does little more than write them.
-    fn build_problem(&mut self, dt: f64) -> Result<(), StepError> {
+    /// In the contact set's order, on both cores while collision kept the pool's helpers
+    /// awake for it ([`crate::rows`]: the calling thread builds from the first pair on
+    /// straight into the problem, the helpers from the last on apart, and only their share is
+    /// copied in). Every run built apart and then all appended cost as much in the copy as the
+    /// second core saved (the 1000-cube pile's rows 0.94–0.97 ms on two threads against
+    /// 0.88–0.93 ms on one): a row and its block are a few hundred bytes, and the build of a
+    /// face, about 0.3 µs, does little more than write them.
+    fn build_problem(&mut self, dt: f64, warm: Option<parallel::Warm>) -> Result<(), StepError> {
         let problem = &mut self.problem;
         problem.bodies.clear();
         problem
@@ -396,62 +403,15 @@ impl World {
         self.biases.clear();
         let contact_settings = self.settings.contact;
         (self.presses).find(&self.bodies, self.contact_set.contacts(), &contact_settings);
-        let pairs = self.contact_set.contacts().len();
-        let model = self.settings.model;
-        for index in 0..pairs {
-            let first = problem.blocks.len();
-            let first_row = problem.rows.len();
-            let landed = self.contact_set.landed(index);
-            let awake = self.contact_set.get(index).is_some_and(|(contact, _)| {
-                !self.bodies[contact.body_a.0].asleep && !self.bodies[contact.body_b.0].asleep
-            });
-            // The face model's bearing part is kept with the pair while its contact is.
-            let built = match (awake, model) {
-                (false, _) => None,
-                (true, ContactModel::Face) => (self.contact_set)
-                    .with_bearing(index, &contact_settings)
-                    .map(|(contact, bearing)| (contact, bearing.map(Some))),
-                (true, _) => (self.contact_set.get(index)).map(|(contact, _)| (contact, Ok(None))),
-            };
-            if let Some((contact, bearing)) = built {
-                bearing
-                    .and_then(|bearing| {
-                        model.build_split_bearing(
-                            contact,
-                            bearing,
-                            dt,
-                            &contact_settings,
-                            problem,
-                            &mut self.biases,
-                        )
-                    })
-                    .map_err(|source| StepError::Contact {
-                        pair: pair_name(&self.bodies, contact),
-                        source,
-                    })?;
-                if let Some(landed) = landed {
-                    let rows = &mut problem.rows[first_row..];
-                    let at = (&self.bodies[..], &problem.bodies[..]);
-                    impact::bounce_where_landed(contact, landed, at, rows, (&contact_settings, dt));
-                }
-                let press = self.presses.share(index);
-                if press > 0.0 {
-                    grip::build(
-                        contact,
-                        press,
-                        dt,
-                        &contact_settings,
-                        problem,
-                        &mut self.biases,
-                    );
-                }
-                if self.presses.squeezed(index) {
-                    self.biases[first_row..].fill(0.0);
-                }
-            }
-            self.contact_set
-                .set_blocks(index, first..problem.blocks.len());
-        }
+        let inputs = RowInputs {
+            bodies: &self.bodies,
+            presses: &self.presses,
+            model: self.settings.model,
+            settings: &contact_settings,
+            dt,
+        };
+        let mut out = ContactRows::of(problem, &mut self.biases);
+        (self.row_runs).build(&mut self.contact_set, &inputs, &mut out, warm)?;
         // Gravity's impulse and the applied forces'.
         for (solver_body, body) in problem.bodies.iter_mut().zip(&self.bodies) {
             match body.kind() {
@@ -909,7 +869,7 @@ fn check_time_step(dt: f64) -> Result<(), StepError> {
 }
 
 /// `a–b` from the contact's body names.
-fn pair_name(bodies: &[Body], contact: &Contact) -> String {
+pub(crate) fn pair_name(bodies: &[Body], contact: &Contact) -> String {
     format!(
         "{}–{}",
         bodies[contact.body_a.0].name(),
