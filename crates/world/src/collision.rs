@@ -144,12 +144,12 @@ impl CollisionSettings {
 /// Brings `set` up to date for a step of `dt`: one contact per pair closer than the margin
 /// grown by how far the pair may close in the step ([`crate::speculative`]), ordered from the
 /// highest to the lowest along `gravity`, its support vertices named as the settings ask.
-/// Returns the pool's helpers kept spinning ([`parallel::Warm`]) when they worked on this pass's
-/// pairs and the set holds enough pairs for its rows to be worth building on every core
-/// ([`rows::worth_every_core`]): started before the set's end, while the helpers are still
-/// awake, so the rows stage finds them so. A pass on the calling thread alone (a scene at rest)
-/// leaves them asleep, and the rows on that thread too: a helper woken for them took longer to
-/// start than the 210-cube pyramid's rows take.
+/// Returns the pool's helpers kept spinning ([`parallel::Warm`]) when the set holds enough pairs
+/// for its rows to be worth building on every core ([`rows::worth_every_core`]), so that the
+/// rows stage finds them awake (a helper woken only at the rows took longer to start than the
+/// 210-cube pyramid's rows take): from the pass's last loop on every core, or, for a pass on
+/// the calling thread alone (a scene at rest), from its start if the set is large
+/// ([`rows::worth_waking`]).
 pub(crate) fn detect(
     bodies: &[Body],
     geometry: &[BodyGeometry],
@@ -227,6 +227,10 @@ pub(crate) fn detect(
     // the result does not depend on the number of threads); then the new pairs are computed,
     // and join the set in pair order.
     let on_every_core = *last_computed >= PARALLEL_PASS;
+    // A large set's rows are built on every core (`crate::rows`): when this pass keeps to the
+    // calling thread, the pool's helpers are woken now, so they are awake by then.
+    let mut warm =
+        (!on_every_core && rows::worth_waking(set.contacts().len())).then(parallel::Warm::start);
     // A body's box grows by the margin and by how far its points may move in the step.
     let pad = |placed: &Placement| margin + placed.travel.farthest();
     let recomputed = set.refresh(
@@ -258,6 +262,7 @@ pub(crate) fn detect(
     };
     let new_on_every_core = new.len() >= PARALLEL_PAIRS;
     if new_on_every_core {
+        drop(warm.take());
         parallel::for_each(new, Features::default, compute_into);
     } else {
         for slot in new.iter_mut() {
@@ -271,9 +276,10 @@ pub(crate) fn detect(
             Found::Nothing => {}
         }
     }
-    let helpers_awake = on_every_core || new_on_every_core;
-    let warm =
-        (helpers_awake && rows::worth_every_core(set.contacts().len())).then(parallel::Warm::start);
+    // Helpers spinning since the start, or awake from a loop, are kept so until the rows.
+    let helpers_awake = warm.is_some() || on_every_core || new_on_every_core;
+    let warm = (helpers_awake && rows::worth_every_core(set.contacts().len()))
+        .then(|| warm.unwrap_or_else(parallel::Warm::start));
     set.end(gravity);
     warm
 }

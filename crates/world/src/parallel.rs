@@ -164,7 +164,7 @@ where
 }
 
 /// Longest a [`Warm`] keeps a helper spinning if it is not dropped in time.
-const LONGEST_WARM: Duration = Duration::from_millis(2);
+const LONGEST_WARM: Duration = Duration::from_millis(5);
 
 /// Keeps the pool's helpers spinning from when it starts until it is dropped, so that a loop
 /// called after some work on this thread finds them awake: a helper idle for more than some

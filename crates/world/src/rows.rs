@@ -1,20 +1,20 @@
 //! The contact rows stage: every awake pair's rows (its model's blocks, the bounce of its
 //! landing, the grip of a press), in the set's order.
 //!
-//! While a large scene moves, the pool's helpers are awake from collision
-//! ([`crate::parallel::Warm`] keeps them so), and the rows are shared: the calling thread builds
-//! runs of pairs from the first on straight into the problem, the helpers runs from the last
-//! on, each into a piece of its own against the same solver bodies, until the two meet
-//! ([`crate::parallel::from_both_ends`]); the helpers' pieces are then appended in order. A
-//! pair's rows depend only on itself, the bodies and the settings, so the problem is the one a
-//! single pass builds, to the bit, on any number of threads (`tests/threads.rs`).
+//! For a large set the pool's helpers are kept awake from collision ([`crate::parallel::Warm`]),
+//! and the rows are shared: the calling thread builds runs of pairs from the first on straight
+//! into the problem, the helpers runs from the last on, each into a piece of its own against the
+//! same solver bodies, until the two meet ([`crate::parallel::from_both_ends`]); the helpers'
+//! pieces are then appended in order. A pair's rows depend only on itself, the bodies and the
+//! settings, so the problem is the one a single pass builds, to the bit, on any number of
+//! threads (`tests/threads.rs`).
 //!
 //! The 1000-cube pile builds some 2,500 pairs' rows a step while it lands, about 0.95 ms on one
 //! core. Every run built apart and all of them appended took 0.62 ms to build and 0.2 ms to
 //! append (the rows stage no faster than on one thread); with the calling thread's share built
-//! in place, the pile's rows stage fell from 0.83–0.85 to 0.63–0.67 ms (medians over 10 s). A
-//! scene at rest computes its contacts on the calling thread alone, its helpers asleep, and
-//! builds its rows there too: a helper woken for them starts later than a pyramid's rows end.
+//! in place, the pile's rows stage fell from 0.83–0.85 to 0.63–0.67 ms (medians over 10 s).
+//! Without the helpers kept awake, a helper woken at the rows took longer to start than a
+//! pyramid's rows take.
 
 use tatami_contact::{ContactError, ContactModel, ContactProjection, ContactRows, grip};
 use tatami_lcp::{Block, Row};
@@ -32,10 +32,21 @@ const RUN: usize = 16;
 /// copy of the helpers' share and the wait for the last of them cost about what they save.
 const PARALLEL_ROWS: usize = 256;
 
+/// Fewest pairs for which a collision pass on the calling thread alone wakes the pool's
+/// helpers for the rows: a helper spinning through the pass cost the 210-cube pyramid (some 600
+/// pairs, their rows 0.15 ms) more than it saved, in its solve's and integration's time; the
+/// 820-cube one's rows (some 2,400 pairs) went from 0.70–0.77 to 0.50–0.51 ms.
+const WAKE_FOR_ROWS: usize = 1024;
+
 /// Whether the rows of a set of `pairs` pairs are worth building on every core, if the pool's
 /// helpers are awake.
 pub(crate) fn worth_every_core(pairs: usize) -> bool {
     pairs >= PARALLEL_ROWS
+}
+
+/// Whether the rows of a set of `pairs` pairs are worth waking the pool's helpers for.
+pub(crate) fn worth_waking(pairs: usize) -> bool {
+    pairs >= WAKE_FOR_ROWS
 }
 
 /// What a pair's rows are built from, besides the pair.
