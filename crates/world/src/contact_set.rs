@@ -409,6 +409,12 @@ impl ContactSet {
         }
     }
 
+    /// The contact at `index`, for a test to alter.
+    #[cfg(test)]
+    pub(crate) fn contact_mut(&mut self, index: usize) -> &mut Contact {
+        &mut self.entries[index].contact
+    }
+
     /// Adds a pair the set did not hold, with its contact computed at `poses` and a feature id
     /// per support vertex.
     pub(crate) fn insert(&mut self, (contact, features, poses): Computed) {

@@ -227,3 +227,155 @@ impl RowRuns {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use nalgebra::{Point2, Point3, UnitQuaternion, Vector3};
+    use tatami_contact::{Contact, ContactFrame, Material};
+    use tatami_geometry::ConvexPolygon;
+    use tatami_lcp::{BodyId, Problem, SolverBody};
+
+    use super::*;
+    use crate::contact_set::Pose;
+    use crate::{BodyDesc, Shape, World};
+
+    /// A floor and two cubes, "a" and "b", with their solver bodies.
+    fn bodies() -> (World, Vec<SolverBody>) {
+        let world = World::builder()
+            .body(BodyDesc::fixed(Shape::cuboid([40.0, 40.0, 2.0])).name("floor"))
+            .body(
+                BodyDesc::dynamic(Shape::cuboid([1.0; 3]))
+                    .name("a")
+                    .position([0.0, 0.0, 1.5]),
+            )
+            .body(
+                BodyDesc::dynamic(Shape::cuboid([1.0; 3]))
+                    .name("b")
+                    .position([3.0, 0.0, 1.5]),
+            )
+            .build()
+            .expect("a valid scene");
+        let solver = world.bodies().iter().map(Body::solver_body).collect();
+        (world, solver)
+    }
+
+    /// `pairs` face contacts of cube "a" or "b" (in turn) on the floor, tilted a little off the
+    /// world's axes, each a little deeper than the last.
+    fn set_of(pairs: usize) -> ContactSet {
+        let mut set = ContactSet::default();
+        let square =
+            [(-0.5, -0.5), (0.5, -0.5), (0.5, 0.5), (-0.5, 0.5)].map(|(x, y)| Point2::new(x, y));
+        let normal = Vector3::new(0.05, -0.03, 1.0).normalize();
+        for k in 0..pairs {
+            let (body, x) = if k % 2 == 0 { (1, 0.0) } else { (2, 3.0) };
+            let depth = 1e-4 * (k % 7) as f64;
+            let contact = Contact {
+                body_a: BodyId(body),
+                body_b: BodyId(0),
+                centre_a: Point3::new(x, 0.0, 1.5),
+                centre_b: Point3::new(0.0, 0.0, 0.0),
+                frame: ContactFrame::from_normal(Point3::new(x, 0.0, 1.0), normal).unwrap(),
+                support: ConvexPolygon::from_points(&square).unwrap(),
+                depths: vec![depth; 4],
+                material: Material::new(0.5, 0.5, 0.0).unwrap(),
+                landing: Vec::new(),
+                bounce_speed: 0.0,
+            };
+            let pose: Pose = (Point3::new(x, 0.0, 1.5), UnitQuaternion::identity());
+            set.insert((contact, Default::default(), [pose, pose]));
+        }
+        set
+    }
+
+    /// Builds `set`'s rows in a pool of `threads` threads, on every core when `parallel`.
+    fn build(
+        set: &mut ContactSet,
+        threads: usize,
+        parallel: bool,
+    ) -> Result<(Problem<ContactProjection>, Vec<f64>), StepError> {
+        let (world, solver) = bodies();
+        let presses = Presses::default();
+        let settings = ContactSettings::default();
+        let inputs = RowInputs {
+            bodies: world.bodies(),
+            presses: &presses,
+            model: ContactModel::Face,
+            settings: &settings,
+            dt: 1.0 / 60.0,
+        };
+        let mut problem = Problem {
+            bodies: solver,
+            ..Default::default()
+        };
+        let mut biases = Vec::new();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let warm = parallel.then(|| {
+                let warm = Warm::start();
+                // Time for the helpers to wake and spin, as collision gives them: the rows
+                // then start with both threads (not a condition of the answer, which is the
+                // same either way, but of the test's reaching the helpers' side).
+                std::thread::sleep(std::time::Duration::from_millis(3));
+                warm
+            });
+            let mut out = ContactRows::of(&mut problem, &mut biases);
+            RowRuns::default().build(set, &inputs, &mut out, warm)
+        })?;
+        Ok((problem, biases))
+    }
+
+    /// Built on two threads (the helpers' runs apart, then appended) the rows, blocks, biases
+    /// and each pair's blocks are those built in one pass on one thread. How many runs the
+    /// helper takes depends on when it gets to them (now and then none): repeated, the helper's
+    /// side is all but sure to be reached (checked by breaking the join's offsets: caught).
+    #[test]
+    fn rows_built_on_every_core_are_those_of_one_pass() {
+        let pairs = 600;
+        let mut one = set_of(pairs);
+        let (serial, serial_biases) = build(&mut one, 1, false).unwrap();
+        assert_eq!(serial.blocks.len(), pairs, "a face block a pair");
+        for index in 0..pairs {
+            assert_eq!(one.get(index).unwrap().1, index..index + 1, "pair {index}");
+        }
+        for attempt in 0..20 {
+            let mut two = set_of(pairs);
+            let (shared, shared_biases) = build(&mut two, 2, true).unwrap();
+            assert_eq!(shared.rows, serial.rows, "attempt {attempt}");
+            assert_eq!(shared.blocks, serial.blocks, "attempt {attempt}");
+            assert_eq!(shared_biases, serial_biases, "attempt {attempt}");
+            for index in 0..pairs {
+                let (got, want) = (two.get(index).unwrap().1, one.get(index).unwrap().1);
+                assert_eq!(got, want, "attempt {attempt}, pair {index}");
+            }
+        }
+    }
+
+    /// A pair whose rows cannot be built is an error naming it; of two such, the first in the
+    /// set's order, wherever the threads built them.
+    #[test]
+    fn the_first_pair_that_fails_in_set_order_is_the_error() {
+        let pairs = 600;
+        for (threads, parallel) in [(1, false), (2, true), (3, true)] {
+            for (bad, named) in [
+                (vec![101, 500], "b–floor"),
+                (vec![500], "a–floor"),
+                (vec![599], "b–floor"),
+            ] {
+                let mut set = set_of(pairs);
+                for &index in &bad {
+                    // A material built by hand past `Material::new`'s checks.
+                    set.contact_mut(index).material.static_friction = f64::NAN;
+                }
+                match build(&mut set, threads, parallel) {
+                    Err(StepError::Contact { pair, .. }) => {
+                        assert_eq!(pair, named, "{threads} threads, bad {bad:?}");
+                    }
+                    other => panic!("{threads} threads, bad {bad:?}: {other:?}"),
+                }
+            }
+        }
+    }
+}
