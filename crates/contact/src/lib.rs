@@ -29,6 +29,10 @@
 //!
 //! Rows are written into a [`tatami_lcp::Problem`] whose blocks carry a [`ContactProjection`],
 //! so one problem holds contacts of any model and any solver of the LCP crate can solve it.
+//! [`ContactModel::build_rows`] writes them instead into a [`ContactRows`]: rows, blocks and
+//! biases of the caller's own beside the bodies they read, so that several threads can each
+//! build contacts apart and the pieces be joined in order ([`ContactRows::append`]) into the
+//! problem a single pass builds.
 //!
 //! ```
 //! use nalgebra::{Point2, Point3, Vector3};
