@@ -163,8 +163,11 @@ where
     (result, answer)
 }
 
-/// Longest a [`Warm`] keeps a helper spinning if it is not dropped in time.
-const LONGEST_WARM: Duration = Duration::from_millis(5);
+/// Longest a [`Warm`] keeps a helper spinning if it is not dropped in time: longer than the
+/// 1000-cube pile's collision at rest (under 1 ms), which a large scene's helpers spin
+/// through, and short, since worlds stepped on several threads at once share the pool, and a
+/// helper spinning for one holds back the loops of the others until it stops.
+const LONGEST_WARM: Duration = Duration::from_millis(2);
 
 /// Keeps the pool's helpers spinning from when it starts until it is dropped, so that a loop
 /// called after some work on this thread finds them awake: a helper idle for more than some
