@@ -44,13 +44,16 @@ impl<'a> ContactRows<'a> {
     ///
     /// ```
     /// use nalgebra::{Point2, Point3, Vector3};
-    /// use tatami_contact::{Contact, ContactFrame, ContactModel, ContactRows, ContactSettings, Material};
+    /// use tatami_contact::{
+    ///     Contact, ContactFrame, ContactModel, ContactRows, ContactSettings, Material,
+    /// };
     /// use tatami_geometry::ConvexPolygon;
     /// use tatami_lcp::{BodyId, Problem, SolverBody};
     ///
     /// let mut cube = SolverBody::fixed();
     /// cube.inv_mass = 1.0;
-    /// let square = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(x, y)| Point2::new(x, y));
+    /// let square = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+    /// let square = square.map(|(x, y)| Point2::new(x, y));
     /// let contact = Contact {
     ///     body_a: BodyId(0),
     ///     body_b: BodyId(1),
@@ -77,7 +80,12 @@ impl<'a> ContactRows<'a> {
     /// let mut biases = Vec::new();
     /// model.build_split(&contact, 0.01, &settings, &mut joined, &mut biases)?;
     /// let (mut rows, mut blocks, mut piece_biases) = (Vec::new(), Vec::new(), Vec::new());
-    /// let mut piece = ContactRows { bodies: &bodies, rows: &mut rows, blocks: &mut blocks, biases: &mut piece_biases };
+    /// let mut piece = ContactRows {
+    ///     bodies: &bodies,
+    ///     rows: &mut rows,
+    ///     blocks: &mut blocks,
+    ///     biases: &mut piece_biases,
+    /// };
     /// model.build_rows(&contact, None, 0.01, &settings, &mut piece)?;
     /// ContactRows::of(&mut joined, &mut biases).append(piece);
     ///

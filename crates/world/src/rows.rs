@@ -35,7 +35,8 @@ const PARALLEL_ROWS: usize = 256;
 /// Fewest pairs for which a collision pass on the calling thread alone wakes the pool's
 /// helpers for the rows: a helper spinning through the pass cost the 210-cube pyramid (some 600
 /// pairs, their rows 0.15 ms) more than it saved, in its solve's and integration's time; the
-/// 820-cube one's rows (some 2,400 pairs) went from 0.70–0.77 to 0.50–0.51 ms.
+/// 820-cube one's rows (some 2,400 pairs) went from 0.64–0.77 to 0.50–0.56 ms (four
+/// interleaved pairs of runs).
 const WAKE_FOR_ROWS: usize = 1024;
 
 /// Whether the rows of a set of `pairs` pairs are worth building on every core, if the pool's
