@@ -17,7 +17,7 @@
 //! pyramid's rows take.
 
 use tatami_contact::{ContactError, ContactModel, ContactProjection, ContactRows, grip};
-use tatami_lcp::{Block, Row};
+use tatami_lcp::{Block, Row, SolverBody};
 
 use crate::contact_set::{ContactSet, PairRows};
 use crate::parallel::Warm;
@@ -150,6 +150,17 @@ impl Run {
         self.record.ends.clear();
         self.record.failed = None;
     }
+
+    /// The run's record, and its own rows, blocks and biases as built against `bodies`.
+    fn apart<'a>(&'a mut self, bodies: &'a [SolverBody]) -> (&'a mut RunRecord, ContactRows<'a>) {
+        let out = ContactRows {
+            bodies,
+            rows: &mut self.rows,
+            blocks: &mut self.blocks,
+            biases: &mut self.biases,
+        };
+        (&mut self.record, out)
+    }
 }
 
 impl RowRuns {
@@ -180,18 +191,7 @@ impl RowRuns {
             on_every_core,
             |run, index, pair| run.record.build((index, pair), out, inputs),
             |run, index, pair| {
-                let Run {
-                    record,
-                    rows,
-                    blocks,
-                    biases,
-                } = run;
-                let mut apart = ContactRows {
-                    bodies: solver_bodies,
-                    rows,
-                    blocks,
-                    biases,
-                };
+                let (record, mut apart) = run.apart(solver_bodies);
                 record.build((index, pair), &mut apart, inputs);
             },
         );
@@ -211,12 +211,7 @@ impl RowRuns {
                 0
             } else {
                 let first_block = out.blocks.len();
-                out.append(ContactRows {
-                    bodies: solver_bodies,
-                    rows: &mut run.rows,
-                    blocks: &mut run.blocks,
-                    biases: &mut run.biases,
-                });
+                out.append(run.apart(solver_bodies).1);
                 first_block
             };
             for &end in &run.record.ends {
