@@ -2,7 +2,7 @@
 //! core, each as a function of its two bodies alone, and written into the contact set in pair
 //! order; the pairs' rows are built on every core, the helpers' share apart and then joined in
 //! the set's order; the position pass, on its own copy of the problem, runs beside the velocity
-//! solve.
+//! solve. So do worlds stepped at once, each inside one of the pool's workers.
 
 use nalgebra::{UnitQuaternion, Vector3};
 use tatami_world::dropped::{Random, mixed_shape};
@@ -37,31 +37,45 @@ fn pile() -> World {
     builder.build().unwrap()
 }
 
+/// A pool of `threads` threads.
+fn pool(threads: usize) -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+}
+
+/// The pile after `steps` steps.
+fn stepped(steps: usize) -> World {
+    let mut world = pile();
+    for _ in 0..steps {
+        world.step(1.0 / 60.0).unwrap();
+    }
+    world
+}
+
+/// Every body's pose and velocity as bits.
+fn bits(world: &World) -> Vec<[u64; 13]> {
+    world
+        .bodies()
+        .iter()
+        .map(|b| {
+            let (p, q) = (b.position(), b.rotation());
+            let (v, w) = (b.linear_velocity(), b.angular_velocity());
+            [
+                p.x, p.y, p.z, q.w, q.i, q.j, q.k, v.x, v.y, v.z, w.x, w.y, w.z,
+            ]
+            .map(f64::to_bits)
+        })
+        .collect()
+}
+
 /// Every body's pose and velocity as bits, after `steps` steps in a pool of `threads` threads,
 /// and the number of touching pairs at the end.
 fn run(threads: usize, steps: usize) -> (Vec<[u64; 13]>, usize) {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap();
-    pool.install(|| {
-        let mut world = pile();
-        for _ in 0..steps {
-            world.step(1.0 / 60.0).unwrap();
-        }
-        let state = world
-            .bodies()
-            .iter()
-            .map(|b| {
-                let (p, q) = (b.position(), b.rotation());
-                let (v, w) = (b.linear_velocity(), b.angular_velocity());
-                [
-                    p.x, p.y, p.z, q.w, q.i, q.j, q.k, v.x, v.y, v.z, w.x, w.y, w.z,
-                ]
-                .map(f64::to_bits)
-            })
-            .collect();
-        (state, world.contacts().len())
+    pool(threads).install(|| {
+        let world = stepped(steps);
+        (bits(&world), world.contacts().len())
     })
 }
 
@@ -75,4 +89,31 @@ fn one_and_two_threads_give_the_same_bits() {
     // The run exercised the parallel paths: every body rests on the floor or another body, and
     // there are enough pairs for their rows to be built on every core.
     assert!(touching >= 256, "only {touching} touching pairs");
+}
+
+/// Several worlds stepped at once on a pool of two threads (many simulations run side by side,
+/// as when training a controller): each step then runs inside one of the pool's workers, its
+/// parallel loops, the helpers kept spinning between two of them and the position pass beside
+/// the velocity solve nested in the pool the other worlds' steps keep busy. Each world ends
+/// with the bits of one world stepped on one thread.
+#[test]
+fn worlds_stepped_at_once_on_the_pool_give_the_bits_of_one_thread() {
+    use rayon::prelude::*;
+    let (one, touching) = run(1, 120);
+    assert!(touching >= 256, "only {touching} touching pairs");
+    let worlds: Vec<World> =
+        pool(2).install(|| (0..3).into_par_iter().map(|_| stepped(120)).collect());
+    for (k, world) in worlds.iter().enumerate() {
+        let differ = one
+            .iter()
+            .zip(bits(world))
+            .filter(|(a, b)| **a != *b)
+            .count();
+        assert_eq!(
+            differ,
+            0,
+            "world {k}: {differ} of {} bodies differ",
+            one.len()
+        );
+    }
 }
