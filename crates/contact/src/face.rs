@@ -27,9 +27,11 @@
 //! Unloaded while the face tips or rests, it catches the face as it lands, as the vertex and
 //! patch models' far rows do: before, nothing held those vertices, and a 5 cm cube tipping
 //! flat at 60 Hz turned past flat in one step and sank 29 mm into the floor. A contact's own
-//! landing points ([`Contact::landing`]: a cylinder's rim beside the one rim point it rests on)
-//! get the same blocks, so the rim's lowest point can run round it as the cylinder wobbles
-//! without the rim beside it sinking in (1 cm before, at 60 Hz).
+//! landing points ([`Contact::landing`]: a cylinder's rim beside the one rim point it rests on,
+//! and the far end of the side line through that point) get the same blocks, so the rim's
+//! lowest point can run round it as the cylinder wobbles without the rim beside it sinking in
+//! (1 cm before, at 60 Hz), and a small cylinder nearly on its side rocks onto its other rim
+//! without swinging it past flat.
 //!
 //! A support *tipping* about its centre gets landing blocks too. The block's normal row holds
 //! `G`, so while its tilt is at the bound (the centre of pressure at an edge, or at a segment's

@@ -320,7 +320,8 @@ impl Outline {
     /// (m) along that direction: for a cylinder touching with one point of its cap's rim, cap
     /// polygon vertices within `band` of that point on either side, where the rim lands as the
     /// cylinder wobbles ([`tatami_contact::Contact::landing`]; [`LANDING_POINTS_PER_SIDE`] of
-    /// them a side at most). A polyhedron's faces, edges and corners land on points of its
+    /// them a side at most), and the far end of the side line through it, where the other rim
+    /// lands as a cylinder nearly on its side rocks. A polyhedron's faces, edges and corners land on points of its
     /// feature as it turns slowly; its vertices within `turn_band` (the pair's closing in the
     /// step, [`crate::speculative`], or 0) are its landing points, nearest first, at most
     /// [`LANDING_POINTS_PER_SIDE`] twice: a cube hitting the floor on a corner at 13.8 m/s
@@ -392,7 +393,8 @@ impl Outline {
 /// turned by `rotation`) touching along the unit `direction` with the one point `rim` of a
 /// cap's rim: cap polygon vertices standing back from it by at most `band` on either side,
 /// [`LANDING_POINTS_PER_SIDE`] a side at most, spread evenly over the arc, the farthest always
-/// among them.
+/// among them; then the far end of the side line through it, on the other cap's rim, if it
+/// stands back by at most `band`.
 fn rim_landing(
     radius: f64,
     half_height: f64,
@@ -440,6 +442,17 @@ fn rim_landing(
                 id,
             }
         }));
+    }
+    // The far end of the side line through the rim point, on the other cap's rim, where a
+    // cylinder nearly on its side lands as it rocks from one rim to the other: no point of
+    // the rim point's own cap is near it.
+    let far = Vector3::new(lowest.x, lowest.y, -cap);
+    if extreme - far.dot(&d) <= band {
+        // Named as that end of the side line ([`Outline::feature`]'s ids).
+        feature.landing.push(FeaturePoint {
+            point: origin + rotation * far,
+            id: 2 * CAP_VERTICES as u32 + u32::from(cap < 0.0),
+        });
     }
 }
 
@@ -1657,5 +1670,52 @@ mod tests {
         );
         let corner = UnitQuaternion::from_euler_angles(0.6, 0.5, 0.2);
         assert!(landing_of(&cube, &corner).landing.is_empty());
+    }
+
+    /// A cylinder tilted `θ` from upright, touching with one point of its cap's rim, also
+    /// lands on the far end of the side line through that point, on the other cap's rim, 2h
+    /// along its axis: exactly when that end stands back by no more than the band, `2h cos θ
+    /// ≤ band` (a 1 cm cylinder from 60° on under a 5 mm band), named as the side line's end
+    /// there. Off the body's axes, on either cap.
+    #[test]
+    fn a_cylinder_on_its_rim_nearly_on_its_side_lands_on_the_far_end_of_its_side_line() {
+        let angle = FeatureAngle::new(1f64.to_radians());
+        let (radius, half_height, band) = (0.005, 0.005, 0.005);
+        let cylinder = Outline::Cylinder {
+            radius,
+            half_height,
+        };
+        let origin = Point3::new(0.3, -0.2, 1.0);
+        let down = -Vector3::z();
+        let axis = nalgebra::Unit::new_normalize(Vector3::new(1.0, 2.0, 0.0));
+        for upside_down in [false, true] {
+            for tilt in [30f64, 55.0, 61.0, 75.0, 88.0] {
+                let tilt = if upside_down { 180.0 - tilt } else { tilt };
+                let rotation = UnitQuaternion::from_axis_angle(&axis, tilt.to_radians())
+                    * UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 0.3);
+                let mut feature = Feature::default();
+                cylinder.feature(&origin, &rotation, &down, &angle, &mut feature);
+                cylinder.landing(&origin, &rotation, &down, (band, 0.0), &mut feature);
+                let [rim] = feature.points[..] else {
+                    panic!("{tilt}°: one rim point, got {}", feature.points.len());
+                };
+                let along_axis = rotation * Vector3::z();
+                let far = feature
+                    .landing
+                    .iter()
+                    .find(|l| ((l.point - rim.point).cross(&along_axis)).norm() < 1e-12);
+                let stands_back = 2.0 * half_height * tilt.to_radians().cos().abs();
+                let case = format!("{tilt}°");
+                assert_eq!(far.is_some(), stands_back <= band, "{case}");
+                if let Some(far) = far {
+                    assert!(((far.point - rim.point).norm() - 2.0 * half_height).abs() < 1e-12);
+                    assert!(((far.point - rim.point).dot(&-down) - stands_back).abs() < 1e-12);
+                    // The side line's ends are named 2 n (bottom cap) and 2 n + 1 (top).
+                    let bottom = rotation.inverse_transform_vector(&(far.point - origin)).z < 0.0;
+                    let id = 2 * CAP_VERTICES as u32 + u32::from(!bottom);
+                    assert_eq!(far.id, id, "{case}");
+                }
+            }
+        }
     }
 }

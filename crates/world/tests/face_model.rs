@@ -823,6 +823,19 @@ fn a_cylinder_lying_on_its_side_spins_down_at_the_line_rate() {
     }
 }
 
+/// How far below the floor's top (z = 0) the lowest of `samples` points evenly round the rim
+/// of `body`'s cap at height `cap` (body frame) of a cylinder of `radius` lies (m; negative
+/// above it).
+fn rim_depth(body: &tatami_world::Body, radius: f64, cap: f64, samples: u32) -> f64 {
+    (0..samples)
+        .map(|k| {
+            let t = std::f64::consts::TAU * f64::from(k) / f64::from(samples);
+            let rim = Vector3::new(radius * t.cos(), radius * t.sin(), cap);
+            -(body.position() + body.rotation() * rim).z
+        })
+        .fold(f64::NEG_INFINITY, f64::max)
+}
+
 /// A cylinder (r 0.4 m, 0.89 m tall, as in the mixed pile) set down on its cap's rim, tilted
 /// past the feature angle about an axis off the floor's, and set wobbling about a horizontal
 /// axis across the tilt: the lowest point of its rim runs round the rim by up to tens of
@@ -858,12 +871,8 @@ fn a_cylinder_wobbling_on_its_rim_stays_out_of_the_floor() {
         let mut deepest: f64 = 0.0;
         for _ in 0..180 {
             w.step(1.0 / 60.0).unwrap();
-            let body = &w.bodies()[1];
-            for k in 0..720 {
-                let t = std::f64::consts::TAU * f64::from(k) / 720.0;
-                let rim = Vector3::new(radius * t.cos(), radius * t.sin(), -0.5 * height);
-                deepest = deepest.max(-(body.position() + body.rotation() * rim).z);
-            }
+            let rim = rim_depth(&w.bodies()[1], radius, -0.5 * height, 720);
+            deepest = deepest.max(rim);
         }
         let case = format!("{degrees}° at {spin} rad/s");
         assert!(deepest < slop + 1e-4, "{case}: {deepest} m into the floor");
@@ -876,6 +885,61 @@ fn a_cylinder_wobbling_on_its_rim_stays_out_of_the_floor() {
         );
         let still = body.angular_velocity().norm();
         assert!(still < 1e-4, "{case}: |ω| = {still} rad/s");
+    }
+}
+
+/// Small cylinders (1 and 2 cm across and tall, 1000 kg/m³) let go 3 mm above the floor nearly
+/// on their side, tilted 60–88° about an axis off the floor's so that one point of a cap's rim
+/// is lowest, at 60 Hz under every model: each comes to lie on its side, its centre one radius
+/// up. Such a cylinder rocks from one rim to the other faster the smaller it is: held at the
+/// rim point, and landing on that rim's points beside it, the far end of its side line swung
+/// past flat each step, became the lowest point, and the cylinder sank through the floor
+/// rocking at ±14 rad/s (a 1 cm one to 11.6 mm below the floor's top from every tilt here,
+/// a 2 cm one at 75° to 16 mm below). The far end now lands like the rim's points
+/// ([`tatami_contact::Contact::landing`]). Bounds: both rims' true circles (sampled every
+/// degree) never deeper than the slop plus 0.1 mm over the 3 s (the circles below their
+/// inscribed 64-gons and the steps' rounding); at the end lying within 1° of flat, its centre
+/// within the slop below one radius, and at rest (1 mm/s).
+#[test]
+fn a_small_cylinder_let_go_nearly_on_its_side_lies_on_the_floor() {
+    let slop = tatami_contact::ContactSettings::default().slop;
+    for model in ContactModel::ALL {
+        for size in [0.01, 0.02] {
+            let (radius, half) = (size / 2.0, size / 2.0);
+            for degrees in [60.0f64, 75.0, 80.0, 85.0, 88.0] {
+                let tilt = degrees.to_radians();
+                let lowest = half * tilt.cos() + radius * tilt.sin();
+                let cylinder = BodyDesc::dynamic(Shape::cylinder(radius, size))
+                    .density(1000.0)
+                    .friction(0.5)
+                    .position([0.3, -0.2, lowest + 0.003])
+                    .rotation(rotation([1.0, 2.0, 0.0], degrees));
+                let mut w = world(model, vec![floor().friction(0.5), cylinder]);
+                let mut deepest: f64 = 0.0;
+                for _ in 0..180 {
+                    w.step(1.0 / 60.0).unwrap();
+                    for cap in [-half, half] {
+                        deepest = deepest.max(rim_depth(&w.bodies()[1], radius, cap, 360));
+                    }
+                }
+                let body = &w.bodies()[1];
+                let case = format!("{}, {size} m at {degrees}°", model.name());
+                let off_flat = (body.rotation() * Vector3::z()).z.abs().asin().to_degrees();
+                let (height, speed) = (body.position().z, body.linear_velocity().norm());
+                println!(
+                    "{case}: deepest {:.3} mm, {off_flat:.3}° off flat, centre {:.3} mm, {speed:.1e} m/s",
+                    deepest * 1e3,
+                    height * 1e3
+                );
+                assert!(deepest < slop + 1e-4, "{case}: {deepest} m into the floor");
+                assert!(off_flat < 1.0, "{case}: {off_flat}° off lying flat");
+                assert!(
+                    height > radius - slop - 1e-4 && height < radius + 1e-4,
+                    "{case}: centre {height} m up"
+                );
+                assert!(speed < 1e-3, "{case}: {speed} m/s");
+            }
+        }
     }
 }
 
