@@ -135,11 +135,11 @@ fn contacts_kept_for_resting_pairs_match_contacts_computed_afresh() {
 /// point or vertex turns about it; the points beside it are the contact's landing points, and
 /// every model gives them blocks that stop them at the support's level. Before the vertex and
 /// patch models did, their 10 cm cylinders went 84 and 87 mm into each other, and their 3 cm
-/// stacks through the floor. Three 1 cm cylinders under the default face model topple and lie
-/// on the floor (0.2 mm deep at the end); before the far end of a rim point's side line was a
-/// landing point, one rocked through the floor and lay 11.6 mm under its top. Under the
-/// vertex and patch models two of them still end 5.9 and 1.5 mm into each other (not
-/// asserted: tolerances are lengths, see the README's known gaps).
+/// stacks through the floor. Three 1 cm cylinders topple and lie on the floor; before the far
+/// end of a rim point's side line was a landing point, one rocked through the floor under the
+/// face model and lay 11.6 mm under its top, and before a pair's margin was held to a share of
+/// its bodies' size (`collision::MARGIN_SHARE_OF_SIZE`: 2.1 mm here, not 5) two ended 5.9 mm
+/// into each other under the vertex model.
 #[test]
 fn small_cylinders_and_hulls_dropped_in_a_turned_stack_stay_out_of_each_other() {
     let slop = ContactSettings::default().slop;
@@ -153,10 +153,6 @@ fn small_cylinders_and_hulls_dropped_in_a_turned_stack_stay_out_of_each_other() 
             ContactModel::Patch,
             ContactModel::Face,
         ] {
-            // 1 cm: the default model's cylinders (see the doc above for the others').
-            if size < 0.02 && model != ContactModel::Face {
-                continue;
-            }
             for (name, shape) in &shapes {
                 let mut builder = World::builder().model(model).body(floor());
                 for k in 0..3 {
