@@ -61,6 +61,9 @@ pub(crate) struct Placement {
     pub travel: Travel,
     /// A ball or a cylinder, whose contacts on its curved surface run over it as it rolls.
     pub round: bool,
+    /// The body's least width (its [`crate::Body`]'s thickness), which holds its pairs' margin
+    /// ([`crate::tolerances::pair_margin`]).
+    pub thickness: f64,
 }
 
 /// A pair found apart along an axis, with the poses it was found at.
@@ -203,6 +206,7 @@ mod tests {
                     reach,
                     travel: Travel::default(),
                     round: false,
+                    thickness: f64::INFINITY,
                 }
             };
             let (now_a, now_b) = (
@@ -260,6 +264,7 @@ mod tests {
             reach,
             travel: Travel::default(),
             round: false,
+            thickness: f64::INFINITY,
         };
         let turned = (
             cube_at.0,

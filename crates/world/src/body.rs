@@ -245,6 +245,9 @@ pub struct Body {
     pub(crate) asleep: bool,
     /// How long (s) the body has been slower than the sleeping thresholds.
     pub(crate) rest_time: f64,
+    /// The least width across the shape (m, [`crate::parry_bridge::Collider::thickness`]),
+    /// which holds its pairs' margin and slop; set when the body joins a world.
+    pub(crate) thickness: f64,
 }
 
 /// How a body moves.
@@ -414,6 +417,7 @@ impl Body {
             target: None,
             asleep: false,
             rest_time: 0.0,
+            thickness: f64::INFINITY,
         })
     }
 

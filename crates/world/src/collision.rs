@@ -21,6 +21,7 @@ use crate::rows;
 use crate::shape::Shape;
 use crate::speculative::Travel;
 use crate::support::{Feature, FeatureAngle, Outline, Support, VertexIds, support};
+use crate::tolerances;
 
 /// Reused buffers of the collision stage.
 #[derive(Debug, Default, Clone)]
@@ -198,6 +199,7 @@ pub(crate) fn detect(
             reach,
             travel: Travel::of(body, reach, dt),
             round: matches!(body.shape(), Shape::Sphere { .. } | Shape::Cylinder { .. }),
+            thickness: body.thickness,
         }
     }));
     let placements = &*placements;
@@ -287,8 +289,8 @@ pub(crate) fn detect(
 /// How far from each other a pair's contact is looked for in a pass ([`speculative`]).
 #[derive(Debug, Clone, Copy)]
 struct Reach {
-    /// The pair's margin (m): the settings', at most [`MARGIN_SHARE_OF_SIZE`] of the smaller
-    /// body's size.
+    /// The pair's margin (m): the settings', held to its thinner body's thickness
+    /// ([`tolerances::pair_margin`]).
     margin: f64,
     /// How far the pair may close in the step (m): a contact is looked for within the margin
     /// grown by this, and one found only beyond the margin stands if the bodies meet within
@@ -319,23 +321,12 @@ impl Reach {
     }
 }
 
-/// Most of the smaller body's size (the radius about its origin that holds it) a pair's margin
-/// takes. The settings' margin (5 mm by default) suits bodies from a few centimetres up;
-/// among bodies of 3–10 mm it reached past their neighbours: 200 such boxes, balls,
-/// cylinders and hulls dropped into a bin at 60 Hz went on jostling at 0.13 m/s, 59 of them
-/// with their centres under the floor's top and contacts 8 mm deep for seconds. With the
-/// margin at most 0.3 of the size they came to rest, no contact deeper than the slop; a 5 mm
-/// hull under the vertex and patch models no longer goes through the floor. Bodies whose size
-/// is over 17 mm (a cube over 19 mm across) keep the settings' margin.
-pub(crate) const MARGIN_SHARE_OF_SIZE: f64 = 0.3;
-
 /// Pair `(i, j)`'s reach: the pass's `plain` one (no closing, no angle of its own), its margin
-/// (at most [`MARGIN_SHARE_OF_SIZE`] of its smaller body's size) and the feature angle `angle`
-/// grown by how far its bodies may close and turn against each other in the step
-/// ([`crate::speculative`]). A pair with a cylinder keeps its feature angle: a
-/// rolling cylinder turns by `v dt / r` a step, and its side line grown by that took in points
-/// beside it, which braked a cylinder rolling down a ramp (2.96 m/s against the closed form's
-/// 3.38). A bouncing pair lands first and bounces on the next step ([`crate::impact`]).
+/// and the feature angle `angle` grown by how far its bodies may close and turn against each
+/// other in the step ([`crate::speculative`]), the margin first held to its thinner body's
+/// thickness ([`tolerances::pair_margin`]). A pair with a cylinder keeps its feature angle: a rolling
+/// cylinder turns by `v dt / r` a step, and its side line grown by that took in points beside
+/// it, which braked a cylinder rolling down a ramp (2.96 m/s against the closed form's 3.38). A bouncing pair lands first and bounces on the next step ([`crate::impact`]).
 fn speculative(
     (geometry, placements): (&[BodyGeometry], &[Placement]),
     (i, j): (usize, usize),
@@ -345,9 +336,9 @@ fn speculative(
     let (a, b) = (&placements[i].travel, &placements[j].travel);
     let turning = a.turning(b);
     let rounded = geometry[i].collider.is_rounded() || geometry[j].collider.is_rounded();
-    let smaller = placements[i].size.min(placements[j].size);
+    let thickness = [placements[i].thickness, placements[j].thickness];
     Reach {
-        margin: plain.margin.min(MARGIN_SHARE_OF_SIZE * smaller),
+        margin: tolerances::pair_margin(plain.margin, thickness),
         closing: a.closing(b),
         turns: a.turn + b.turn,
         // A turn under a tenth of the angle would change little, and costs the trigonometry.

@@ -39,6 +39,7 @@ use tatami_contact::{Contact, ContactSettings};
 use tatami_lcp::{Row, SolverBody};
 
 use crate::body::Body;
+use crate::tolerances;
 
 /// How a pair met in a step (its touchdown), handed on to the next step's bounce
 /// ([`Impacts::landing`]).
@@ -74,6 +75,12 @@ pub(crate) struct Impacts<'a> {
 }
 
 impl Impacts<'_> {
+    /// The contact settings of `contact`'s pair, its slop held to its bodies' thickness
+    /// ([`crate::tolerances`]), as its rows get them.
+    fn settings_of(&self, contact: &Contact) -> ContactSettings {
+        tolerances::pair_settings(self.settings, self.bodies, contact)
+    }
+
     /// The acceleration (m/s²) with which gravity closes `contact`'s bodies along its normal
     /// (negative if it parts them).
     fn closing_pull(&self, contact: &Contact) -> f64 {
@@ -125,7 +132,8 @@ impl Impacts<'_> {
         if inelastic && still {
             return Touchdown::default();
         }
-        let (pull, dt, settings) = (self.closing_pull(contact), self.dt, self.settings);
+        let (pull, dt) = (self.closing_pull(contact), self.dt);
+        let settings = self.settings_of(contact);
         if inelastic && !self.may_close(contact, pull) {
             return Touchdown::default();
         }
@@ -237,7 +245,8 @@ impl Impacts<'_> {
         if met.speed <= self.settings.restitution_threshold {
             return 0.0;
         }
-        let (settings, pull, dt) = (self.settings, self.closing_pull(contact), self.dt);
+        let settings = self.settings_of(contact);
+        let (pull, dt) = (self.closing_pull(contact), self.dt);
         let bouncing: Vec<Point2<f64>> = support_points(contact)
             .filter(|&(point, &depth)| {
                 settings.has_landed(depth) || self.approach(contact, point) * dt >= -depth
@@ -322,9 +331,10 @@ impl Impacts<'_> {
             &self.bodies[contact.body_b.0],
         );
         // Plain loops over the two lists: read for every pair on every step.
+        let settings = self.settings_of(contact);
         let (mut reach_squared, mut gap) = (0.0_f64, f64::INFINITY);
         let mut take = |point: &Point2<f64>, depth: f64| {
-            if !self.settings.has_landed(depth) {
+            if !settings.has_landed(depth) {
                 reach_squared = reach_squared.max(point.coords.norm_squared());
                 gap = gap.min(-depth);
             }

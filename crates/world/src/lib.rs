@@ -47,6 +47,7 @@ mod sleep;
 mod speculative;
 mod support;
 mod timings;
+mod tolerances;
 mod world;
 mod wrench;
 

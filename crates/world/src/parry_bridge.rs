@@ -138,6 +138,20 @@ impl Collider {
         }
     }
 
+    /// The least width across the shape (m): a polytope's between a face's plane and the
+    /// farthest vertex behind it, a ball's diameter, a cylinder's diameter or height.
+    pub(crate) fn thickness(&self) -> f64 {
+        if let Some(polytope) = &self.polytope {
+            return polytope.thickness();
+        }
+        if let Some(ball) = self.shape.as_ball() {
+            return 2.0 * ball.radius;
+        }
+        self.shape.as_cylinder().map_or(f64::INFINITY, |cylinder| {
+            2.0 * cylinder.radius.min(cylinder.half_height)
+        })
+    }
+
     /// Whether the contact normal against this shape may come from its rounded core (a
     /// cylinder's, see [`ROUNDING`]), found within more than the prediction of the true shapes:
     /// such a pair's contact is kept only when its true depth is within the prediction.

@@ -22,7 +22,7 @@ use tatami_lcp::{Block, Row, SolverBody};
 use crate::contact_set::{ContactSet, PairRows};
 use crate::parallel::Warm;
 use crate::press::Presses;
-use crate::{Body, ContactSettings, StepError, impact};
+use crate::{Body, ContactSettings, StepError, impact, tolerances};
 
 /// Pairs a run holds: small enough that the two threads meet within a run of each other,
 /// large enough that claiming a run costs nothing beside building it (about 6 µs).
@@ -110,6 +110,7 @@ impl RunRecord {
         let contact = pair.contact();
         let awake = !bodies[contact.body_a.0].asleep && !bodies[contact.body_b.0].asleep;
         if awake && self.failed.is_none() {
+            let settings = &tolerances::pair_settings(settings, bodies, contact);
             let landed = pair.landed();
             // The face model's bearing part is kept with the pair while its contact is.
             let (contact, bearing) = match model {

@@ -80,6 +80,15 @@ impl Polytope {
         &self.faces
     }
 
+    /// The least width across the polytope between two parallel planes, one of them a face's:
+    /// over its faces, how far the vertices reach back from the face's plane (m).
+    pub(crate) fn thickness(&self) -> f64 {
+        self.faces
+            .iter()
+            .map(|(n, d)| d + self.support(&-n))
+            .fold(f64::INFINITY, f64::min)
+    }
+
     /// The largest of `direction · v` over the vertices.
     fn support(&self, direction: &Vector3<f64>) -> f64 {
         self.vertices

@@ -12,8 +12,8 @@
 //! [`crate::FrictionLimit`]), `bias_rate`, `slop`,
 //! `max_depenetration_speed` (m/s, > 0) and `max_velocity_bias` (m/s, ≥ 0; see
 //! [`tatami_contact::ContactSettings`]), and `contact_margin` (m, ≥ 0; see
-//! [`WorldSettings::contact_margin`]: with `slop`, what to scale down for bodies of a
-//! centimetre or less). A body may be `"kinematic": true`: it moves at its
+//! [`WorldSettings::contact_margin`]: each pair's, and its slop, are held to its thinner
+//! body's thickness below 2 cm). A body may be `"kinematic": true`: it moves at its
 //! `velocity` and `angular_velocity` whatever touches it (see [`BodyDesc::kinematic`]).
 //!
 //! Every number is checked while it is read, so an invalid scene is rejected with the field's

@@ -63,9 +63,9 @@ pub struct WorldSettings {
     /// Bias, slop, restitution threshold, friction switching and cone.
     pub contact: ContactSettings,
     /// Bodies closer than this (m) get a contact, so a resting gap is closed without bouncing.
-    /// A pair's margin is at most 0.3 of its smaller body's size (the largest distance of its
-    /// outline from its origin), so bodies of a centimetre or less get a margin of their own
-    /// scale; bodies over 17 mm in size keep this one.
+    /// A pair's margin is at most a quarter, and its slop ([`ContactSettings::slop`]) a tenth,
+    /// of its thinner body's thickness (its least width), so thin and small bodies get
+    /// tolerances of their own scale; bodies over 2 cm thick keep the settings'.
     pub contact_margin: f64,
     /// Faces tilted by less than this (rad) from the contact plane count as flat, so a resting
     /// face keeps its full support polygon.

@@ -14,7 +14,8 @@
 
 use crate::Body;
 use crate::body::BodyKind;
-use tatami_contact::Contact;
+use crate::tolerances;
+use tatami_contact::{Contact, ContactSettings};
 use tatami_lcp::DisjointSets;
 
 /// When bodies fall asleep. The thresholds are Box2D's (its `b2_linearSleepTolerance`-like 5 cm/s
@@ -112,21 +113,25 @@ impl Islands {
 
     /// Advances each awake dynamic body's rest time by `dt` (or resets it) and puts to sleep
     /// every island whose bodies have all rested for `settings.time`, unless one of its
-    /// `contacts` is deeper than `slop` + [`SLEEP_DEPTH_TOLERANCE`]. Uses the islands of the
-    /// last [`wake`](Self::wake).
+    /// `contacts` is deeper than its pair's slop ([`crate::tolerances`] of `contact_settings`) +
+    /// [`SLEEP_DEPTH_TOLERANCE`]. Uses the islands of the last [`wake`](Self::wake).
     pub(crate) fn fall_asleep<'a>(
         &mut self,
         bodies: &mut [Body],
         contacts: impl Iterator<Item = &'a Contact>,
         settings: &Sleeping,
-        slop: f64,
+        contact_settings: &ContactSettings,
         dt: f64,
     ) {
         self.rested.clear();
         self.rested.resize(bodies.len(), f64::INFINITY);
         // A body pressed in stays awake, so the position pass goes on pushing it out: the
         // island's shortest rest time is held at zero.
-        for contact in contacts.filter(|c| c.depth() > slop + SLEEP_DEPTH_TOLERANCE) {
+        let pressed_in = |c: &Contact, bodies: &[Body]| {
+            let slop = tolerances::pair_settings(contact_settings, bodies, c).slop;
+            c.depth() > slop + SLEEP_DEPTH_TOLERANCE
+        };
+        for contact in contacts.filter(|c| pressed_in(c, bodies)) {
             for body in [contact.body_a.0, contact.body_b.0] {
                 if bodies[body].is_dynamic() {
                     let root = self.sets.root(body);

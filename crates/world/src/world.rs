@@ -127,7 +127,7 @@ impl World {
     pub fn add_body(&mut self, desc: BodyDesc) -> Result<BodyId, WorldError> {
         let index = self.bodies.len();
         let id = BodyId(self.next_id);
-        let body = Body::new(desc, id, index)?;
+        let mut body = Body::new(desc, id, index)?;
         let collider = Collider::new(body.shape()).ok_or_else(|| WorldError::InvalidBody {
             body: body.name().to_owned(),
             field: "shape",
@@ -157,6 +157,7 @@ impl World {
                 });
             }
         };
+        body.thickness = collider.thickness();
         self.bodies.push(body);
         self.geometry.push(BodyGeometry { collider, outline });
         self.next_id += 1;
@@ -327,7 +328,7 @@ impl World {
                 &mut self.bodies,
                 self.contact_set.contacts(),
                 &self.settings.sleeping,
-                self.settings.contact.slop,
+                &self.settings.contact,
                 dt,
             );
         }

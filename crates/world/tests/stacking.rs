@@ -135,10 +135,11 @@ fn contacts_kept_for_resting_pairs_match_contacts_computed_afresh() {
 /// point or vertex turns about it; the points beside it are the contact's landing points, and
 /// every model gives them blocks that stop them at the support's level. Before the vertex and
 /// patch models did, their 10 cm cylinders went 84 and 87 mm into each other, and their 3 cm
-/// stacks through the floor. Three 1 cm cylinders topple and lie on the floor; before the far
-/// end of a rim point's side line was a landing point, one rocked through the floor under the
-/// face model and lay 11.6 mm under its top, and before a pair's margin was held to a share of
-/// its bodies' size (`collision::MARGIN_SHARE_OF_SIZE`: 2.1 mm here, not 5) two ended 5.9 mm
+/// stacks through the floor. Three 1 cm cylinders topple and lie on the floor (1 mm deep at
+/// the end: their pairs' slop, a tenth of their thickness); before the far end of a rim
+/// point's side line was a landing point, one rocked through the floor under the face model
+/// and lay 11.6 mm under its top, and before a pair's margin and slop were held to its
+/// thinner body's thickness (`tolerances`: 2.5 and 1 mm here, not 5 and 2) two ended 5.9 mm
 /// into each other under the vertex model.
 #[test]
 fn small_cylinders_and_hulls_dropped_in_a_turned_stack_stay_out_of_each_other() {
