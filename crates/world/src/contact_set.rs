@@ -34,7 +34,7 @@ use tatami_contact::{
 };
 use tatami_geometry::PolygonKind;
 use tatami_lcp::pgs::Support;
-use tatami_lcp::{Problem, Projection};
+use tatami_lcp::{Problem, Projection, SolverBody};
 
 use crate::apart::{Apart, Placement};
 use crate::carry::{CarryBounds, Drift, carry};
@@ -734,18 +734,49 @@ impl ContactSet {
         std::mem::swap(&mut self.impulses, &mut self.next_impulses);
     }
 
-    /// The blocks from the lowest contact to the highest, each with the body that is lower along
-    /// `gravity` as the support (for [`tatami_lcp::pgs::shock_propagation`]).
-    pub(crate) fn shock_order(&mut self, gravity: &Vector3<f64>) -> &[(usize, Support)] {
+    /// The blocks from the lowest contact to the highest, each with its support for
+    /// [`tatami_lcp::pgs::shock_propagation`] ([`shock_support`]; `bodies` give the masses).
+    pub(crate) fn shock_order(
+        &mut self,
+        gravity: &Vector3<f64>,
+        bodies: &[SolverBody],
+    ) -> &[(usize, Support)] {
         self.shock_order.clear();
         for entry in self.entries.iter().rev() {
-            let support = support_of(&entry.contact, gravity);
+            let support = shock_support(&entry.contact, gravity, bodies);
             self.shock_order
                 .extend(entry.state.blocks.clone().map(|block| (block, support)));
         }
         &self.shock_order
     }
 }
+
+/// The body the shock pass holds still at `contact`: the one lower along `gravity`
+/// ([`support_of`]), but at a side contact (its normal more than 60° off `gravity`), which
+/// carries no weight, the heavier when it is at least [`SIDE_CONTACT_MASS_RATIO`] times the
+/// other's mass (or fixed, or kinematic). Held still there, a light body took the impulse
+/// that stopped a heavy one it met side on, and the next step started from it: a 200 kg slab
+/// pushed at 5 m/s into a row of 1 cm cubes threw them at 4 km/s.
+fn shock_support(contact: &Contact, gravity: &Vector3<f64>, bodies: &[SolverBody]) -> Support {
+    let [a, b] = [contact.body_a, contact.body_b].map(|id| bodies[id.0].inv_mass);
+    let side = contact.frame.normal.dot(gravity).abs() < SIDE_CONTACT_COS * gravity.norm();
+    if side && b >= SIDE_CONTACT_MASS_RATIO * a && b > a {
+        Support::A
+    } else if side && a >= SIDE_CONTACT_MASS_RATIO * b && a > b {
+        Support::B
+    } else {
+        support_of(contact, gravity)
+    }
+}
+
+/// A contact whose normal makes less than this cosine with gravity (more than 60° off it) is
+/// a side contact for [`shock_support`].
+const SIDE_CONTACT_COS: f64 = 0.5;
+
+/// How many times heavier one body of a side contact must be to be held still by the shock
+/// pass ([`shock_support`]). At every mass ratio, bodies of 3–10 mm in a bin (ratios up to
+/// about 40) jostled for 10 s where they had settled by 4 s; from ten, by 6 s.
+const SIDE_CONTACT_MASS_RATIO: f64 = 100.0;
 
 /// The body of `contact` that is lower along `gravity` (by centre of mass): the one carrying the
 /// other.

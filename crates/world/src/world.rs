@@ -477,7 +477,8 @@ impl World {
         let under_gravity = self.gravity != Vector3::zeros();
         let beside = self.problem.rows.len() >= POSITION_PASS_BESIDE_ROWS;
         let order = if self.settings.shock_propagation || (correcting && under_gravity) {
-            self.contact_set.shock_order(&self.gravity)
+            self.contact_set
+                .shock_order(&self.gravity, &self.problem.bodies)
         } else {
             &[]
         };
