@@ -324,9 +324,10 @@ impl Reach {
 /// Pair `(i, j)`'s reach: the pass's `plain` one (no closing, no angle of its own), its margin
 /// and the feature angle `angle` grown by how far its bodies may close and turn against each
 /// other in the step ([`crate::speculative`]), the margin first held to its thinner body's
-/// thickness ([`tolerances::pair_margin`]). A pair with a cylinder keeps its feature angle: a rolling
-/// cylinder turns by `v dt / r` a step, and its side line grown by that took in points beside
-/// it, which braked a cylinder rolling down a ramp (2.96 m/s against the closed form's 3.38). A bouncing pair lands first and bounces on the next step ([`crate::impact`]).
+/// thickness ([`tolerances::pair_margin`]). A pair with a cylinder keeps its feature angle: a
+/// rolling cylinder turns by `v dt / r` a step, and its side line grown by that took in points
+/// beside it, which braked a cylinder rolling down a ramp (2.96 m/s against the closed form's
+/// 3.38). A bouncing pair lands first and bounces on the next step ([`crate::impact`]).
 fn speculative(
     (geometry, placements): (&[BodyGeometry], &[Placement]),
     (i, j): (usize, usize),

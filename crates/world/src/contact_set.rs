@@ -758,14 +758,24 @@ impl ContactSet {
 /// that stopped a heavy one it met side on, and the next step started from it: a 200 kg slab
 /// pushed at 5 m/s into a row of 1 cm cubes threw them at 4 km/s.
 fn shock_support(contact: &Contact, gravity: &Vector3<f64>, bodies: &[SolverBody]) -> Support {
-    let [a, b] = [contact.body_a, contact.body_b].map(|id| bodies[id.0].inv_mass);
     let side = contact.frame.normal.dot(gravity).abs() < SIDE_CONTACT_COS * gravity.norm();
-    if side && b >= SIDE_CONTACT_MASS_RATIO * a && b > a {
-        Support::A
-    } else if side && a >= SIDE_CONTACT_MASS_RATIO * b && a > b {
-        Support::B
+    match heavier(contact, bodies, SIDE_CONTACT_MASS_RATIO) {
+        Some(heavier) if side => heavier,
+        _ => support_of(contact, gravity),
+    }
+}
+
+/// The body of `contact` (masses from `bodies`) at least `ratio` (> 1) times heavier than the
+/// other, a fixed or kinematic one (no inverse mass) being heavier than any free one; `None`
+/// when neither is.
+pub(crate) fn heavier(contact: &Contact, bodies: &[SolverBody], ratio: f64) -> Option<Support> {
+    let [a, b] = [contact.body_a, contact.body_b].map(|id| bodies[id.0].inv_mass);
+    if b > a && b >= ratio * a {
+        Some(Support::A)
+    } else if a > b && a >= ratio * b {
+        Some(Support::B)
     } else {
-        support_of(contact, gravity)
+        None
     }
 }
 

@@ -321,12 +321,12 @@ impl Outline {
     /// polygon vertices within `band` of that point on either side, where the rim lands as the
     /// cylinder wobbles ([`tatami_contact::Contact::landing`]; [`LANDING_POINTS_PER_SIDE`] of
     /// them a side at most), and the far end of the side line through it, where the other rim
-    /// lands as a cylinder nearly on its side rocks. A polyhedron's faces, edges and corners land on points of its
-    /// feature as it turns slowly; its vertices within `turn_band` (the pair's closing in the
-    /// step, [`crate::speculative`], or 0) are its landing points, nearest first, at most
-    /// [`LANDING_POINTS_PER_SIDE`] twice: a cube hitting the floor on a corner at 13.8 m/s
-    /// left it spinning at 7.5 rad/s, and the next corner swung down 93 mm into the floor in
-    /// that step, outside the feature and any feature angle.
+    /// lands as a cylinder nearly on its side rocks. A polyhedron's faces, edges and corners
+    /// land on points of its feature as it turns slowly; its vertices within `turn_band` (the
+    /// pair's closing in the step, [`crate::speculative`], or 0) are its landing points,
+    /// nearest first, at most [`LANDING_POINTS_PER_SIDE`] twice: a cube hitting the floor on a
+    /// corner at 13.8 m/s left it spinning at 7.5 rad/s, and the next corner swung down 93 mm
+    /// into the floor in that step, outside the feature and any feature angle.
     pub(crate) fn landing(
         &self,
         origin: &Point3<f64>,
@@ -1544,6 +1544,22 @@ mod tests {
         }
     }
 
+    /// Where the landing tests place a body: off the world's origin.
+    fn landing_origin() -> Point3<f64> {
+        Point3::new(0.3, -0.2, 1.0)
+    }
+
+    /// `outline`'s feature along −z (feature angle 1°) at [`landing_origin`] turned by
+    /// `rotation`, with its landing points within `band`.
+    fn landing_down(outline: &Outline, rotation: &UnitQuaternion<f64>, band: f64) -> Feature {
+        let (origin, down) = (landing_origin(), -Vector3::z());
+        let mut feature = Feature::default();
+        let angle = FeatureAngle::new(1f64.to_radians());
+        outline.feature(&origin, rotation, &down, &angle, &mut feature);
+        outline.landing(&origin, rotation, &down, (band, 0.0), &mut feature);
+        feature
+    }
+
     /// A cylinder touching with one point of its cap's rim (tilted past the feature angle,
     /// about an axis off the body's axes) lands on cap vertices within the band of that point,
     /// found here by brute force over the cap: on each side of the rim point, at most
@@ -1553,19 +1569,14 @@ mod tests {
     /// `R (1 − cos φ) sin θ ≤ band`. A cap lying flat, a side line and a box have none.
     #[test]
     fn a_cylinder_on_its_rim_lands_on_the_cap_vertices_within_the_band() {
-        let angle = FeatureAngle::new(1f64.to_radians());
         let (radius, half_height, band) = (0.4, 0.45, 0.005);
         let cylinder = Outline::Cylinder {
             radius,
             half_height,
         };
-        let origin = Point3::new(0.3, -0.2, 1.0);
-        let down = -Vector3::z();
+        let (origin, down) = (landing_origin(), -Vector3::z());
         let landing_of = |outline: &Outline, rotation: &UnitQuaternion<f64>| {
-            let mut feature = Feature::default();
-            outline.feature(&origin, rotation, &down, &angle, &mut feature);
-            outline.landing(&origin, rotation, &down, (band, 0.0), &mut feature);
-            feature
+            landing_down(outline, rotation, band)
         };
         let axis = Vector3::new(1.0, 2.0, 0.0).normalize();
         let spacing = std::f64::consts::TAU / CAP_VERTICES as f64;
@@ -1679,23 +1690,19 @@ mod tests {
     /// there. Off the body's axes, on either cap.
     #[test]
     fn a_cylinder_on_its_rim_nearly_on_its_side_lands_on_the_far_end_of_its_side_line() {
-        let angle = FeatureAngle::new(1f64.to_radians());
         let (radius, half_height, band) = (0.005, 0.005, 0.005);
         let cylinder = Outline::Cylinder {
             radius,
             half_height,
         };
-        let origin = Point3::new(0.3, -0.2, 1.0);
-        let down = -Vector3::z();
+        let (origin, down) = (landing_origin(), -Vector3::z());
         let axis = nalgebra::Unit::new_normalize(Vector3::new(1.0, 2.0, 0.0));
         for upside_down in [false, true] {
             for tilt in [30f64, 55.0, 61.0, 75.0, 88.0] {
                 let tilt = if upside_down { 180.0 - tilt } else { tilt };
                 let rotation = UnitQuaternion::from_axis_angle(&axis, tilt.to_radians())
                     * UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 0.3);
-                let mut feature = Feature::default();
-                cylinder.feature(&origin, &rotation, &down, &angle, &mut feature);
-                cylinder.landing(&origin, &rotation, &down, (band, 0.0), &mut feature);
+                let feature = landing_down(&cylinder, &rotation, band);
                 let [rim] = feature.points[..] else {
                     panic!("{tilt}°: one rim point, got {}", feature.points.len());
                 };

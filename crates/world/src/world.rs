@@ -12,7 +12,7 @@ use tatami_lcp::{DisjointSets, LcpError, Problem, Row, SolverBody};
 use crate::body::{BodyKind, Motion};
 use crate::bounce_guard::BounceGuard;
 use crate::collision::{self, BodyGeometry, CollisionSettings, CollisionWorkspace};
-use crate::contact_set::{ContactSet, HandedOn, rows_of};
+use crate::contact_set::{self, ContactSet, HandedOn, rows_of};
 use crate::impact::Impacts;
 use crate::parallel;
 use crate::parry_bridge::Collider;
@@ -767,8 +767,8 @@ const COLD_START_MASS_RATIO: f64 = 1e4;
 /// Whether `contact` is between two free bodies (of `bodies`) [`COLD_START_MASS_RATIO`] or
 /// more apart in mass.
 fn far_apart_in_mass(contact: &Contact, bodies: &[SolverBody]) -> bool {
-    let [a, b] = [contact.body_a, contact.body_b].map(|id| bodies[id.0].inv_mass);
-    a > 0.0 && b > 0.0 && a.max(b) >= COLD_START_MASS_RATIO * a.min(b)
+    let free = [contact.body_a, contact.body_b].map(|id| bodies[id.0].inv_mass > 0.0);
+    free == [true, true] && contact_set::heavier(contact, bodies, COLD_START_MASS_RATIO).is_some()
 }
 
 /// Rows from which the position pass runs on a helper thread beside the velocity solve. A
