@@ -263,3 +263,62 @@ fn every_example_scene_loads_and_runs() {
     }
     assert!(count >= 4, "found {count} scenes in {}", folder.display());
 }
+
+/// Every example scene turned whole — bodies, velocities and gravity — runs the same course:
+/// nothing in the step may favour the world's axes (the floor's normal along z, gravity along
+/// −z). Turned so that y is up, as many tools have it, and by 37° about an arbitrary axis, each
+/// run's positions, turned back, stay within 1 mm of the scene's own at every step: rounding
+/// in the turned frame, grown through the contacts' events, was measured at 0.05 mm at most
+/// (the pyramid of 55). Left out, as chaotic: the paddle sweep, the grasp and the ledge, where
+/// a body tumbles off an edge and the same rounding grows to centimetres.
+#[test]
+fn every_example_scene_turned_whole_runs_the_same_course() {
+    use nalgebra::{Unit, UnitQuaternion, Vector3};
+    let turns = [
+        UnitQuaternion::from_axis_angle(&Vector3::x_axis(), -std::f64::consts::FRAC_PI_2),
+        UnitQuaternion::from_axis_angle(
+            &Unit::new_normalize(Vector3::new(1.0, 2.0, 3.0)),
+            37f64.to_radians(),
+        ),
+    ];
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes");
+    let mut count = 0;
+    for entry in std::fs::read_dir(&folder).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_stem().unwrap().to_string_lossy().into_owned();
+        if path.extension().and_then(|e| e.to_str()) != Some("json")
+            || ["paddle_sweep", "grasp", "ledge"].contains(&name.as_str())
+        {
+            continue;
+        }
+        let scene = Scene::load(&path).unwrap();
+        let mut own = scene.world().unwrap();
+        let mut worlds: Vec<_> = turns
+            .iter()
+            .map(|turn| {
+                let mut turned = scene.clone();
+                turned.gravity = turn * turned.gravity;
+                for body in &mut turned.bodies {
+                    body.position = turn * body.position;
+                    body.rotation = turn * body.rotation;
+                    body.velocity = turn * body.velocity;
+                    body.angular_velocity = turn * body.angular_velocity;
+                }
+                turned.world().unwrap()
+            })
+            .collect();
+        let mut apart: f64 = 0.0;
+        for _ in 0..scene.steps {
+            own.step(scene.dt).unwrap();
+            for (world, turn) in worlds.iter_mut().zip(&turns) {
+                world.step(scene.dt).unwrap();
+                for (a, b) in own.bodies().iter().zip(world.bodies()) {
+                    apart = apart.max((a.position() - turn.inverse() * b.position()).norm());
+                }
+            }
+        }
+        assert!(apart < 1e-3, "{name}: the turned runs part by {apart} m");
+        count += 1;
+    }
+    assert!(count >= 10, "found {count} scenes in {}", folder.display());
+}
