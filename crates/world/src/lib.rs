@@ -45,6 +45,7 @@ mod settings;
 mod shape;
 mod sleep;
 mod speculative;
+mod substeps;
 mod support;
 mod timings;
 mod tolerances;
@@ -57,9 +58,13 @@ pub use body::{
 };
 pub use builder::{DEFAULT_GRAVITY, GRAVITY_LIMIT, WorldBuilder};
 pub use error::{StepError, WorldError};
-pub use settings::{MAX_ITERATIONS, PGS_ITERATIONS, PGS_TOLERANCE, Solver, WorldSettings};
+pub use settings::{
+    MAX_ITERATIONS, MAX_SUBSTEPS, PGS_ITERATIONS, PGS_TOLERANCE, SUBSTEP_LIMIT, Solver,
+    WorldSettings,
+};
 pub use shape::{HullMesh, LENGTHS, MassProperties, Shape};
 pub use sleep::{SLEEP_DEPTH_TOLERANCE, Sleeping};
+pub use substeps::SAG_SHARE;
 pub use tatami_contact::{
     ContactModel, ContactProjection, ContactSettings, FrictionCone, FrictionLimit, TwistCentre,
 };

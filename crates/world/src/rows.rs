@@ -60,8 +60,12 @@ pub(crate) struct RowInputs<'a> {
     pub model: ContactModel,
     /// The contact settings.
     pub settings: &'a ContactSettings,
-    /// The step (s).
+    /// The step (s): a substep's, when the world's step is split.
     pub dt: f64,
+    /// What a grip's press is divided by in place of `dt` (s): the world's step squared over
+    /// `dt` (`dt` times the substeps), so that a press gives one force however the step is
+    /// split ([`crate::substeps`]).
+    pub grip_dt: f64,
 }
 
 /// The runs of the rows stage, kept between steps so that they build without allocating.
@@ -106,6 +110,7 @@ impl RunRecord {
             model,
             settings,
             dt,
+            grip_dt,
         } = inputs;
         let contact = pair.contact();
         let awake = !bodies[contact.body_a.0].asleep && !bodies[contact.body_b.0].asleep;
@@ -131,7 +136,7 @@ impl RunRecord {
                     impact::bounce_where_landed(contact, landed, at, rows, (settings, dt));
                     let press = presses.share(index);
                     if press > 0.0 {
-                        grip::build_rows(contact, press, dt, settings, out);
+                        grip::build_rows(contact, press, grip_dt, settings, out);
                     }
                     if presses.squeezed(index) {
                         out.biases[first_row..].fill(0.0);
@@ -299,6 +304,7 @@ mod tests {
             model: ContactModel::Face,
             settings: &settings,
             dt: 1.0 / 60.0,
+            grip_dt: 1.0 / 60.0,
         };
         let mut problem = Problem {
             bodies: solver,

@@ -11,9 +11,10 @@
 //! force and twist on one ellipsoid, or `"separate"`, the paper's bounds apart; see
 //! [`crate::FrictionLimit`]), `bias_rate`, `slop`,
 //! `max_depenetration_speed` (m/s, > 0) and `max_velocity_bias` (m/s, ≥ 0; see
-//! [`tatami_contact::ContactSettings`]), and `contact_margin` (m, ≥ 0; see
+//! [`tatami_contact::ContactSettings`]), `contact_margin` (m, ≥ 0; see
 //! [`WorldSettings::contact_margin`]: each pair's, and its slop, are held to its thinner
-//! body's thickness below 2 cm). A body may be `"kinematic": true`: it moves at its
+//! body's thickness below 2 cm), and `max_substeps` (1 to 1000, 1 by default: see
+//! [`WorldSettings::max_substeps`]). A body may be `"kinematic": true`: it moves at its
 //! `velocity` and `angular_velocity` whatever touches it (see [`BodyDesc::kinematic`]).
 //!
 //! Every number is checked while it is read, so an invalid scene is rejected with the field's
@@ -339,6 +340,8 @@ struct RawScene {
     max_depenetration_speed: Option<Positive>,
     #[serde(default, deserialize_with = "present")]
     max_velocity_bias: Option<NonNegative>,
+    #[serde(default, deserialize_with = "substep_limit")]
+    max_substeps: Option<usize>,
     #[serde(deserialize_with = "named_once")]
     bodies: Vec<RawBody>,
 }
@@ -418,6 +421,17 @@ fn at_least_one<'de, D: Deserializer<'de>>(d: D) -> Result<Option<usize>, D::Err
     Ok(Some(n))
 }
 
+fn substep_limit<'de, D: Deserializer<'de>>(d: D) -> Result<Option<usize>, D::Error> {
+    let n = usize::deserialize(d)?;
+    if !(1..=crate::SUBSTEP_LIMIT).contains(&n) {
+        return Err(serde::de::Error::custom(format!(
+            "must be 1 to {}, got {n}",
+            crate::SUBSTEP_LIMIT
+        )));
+    }
+    Ok(Some(n))
+}
+
 impl RawScene {
     fn into_scene(self) -> Scene {
         let mut settings = WorldSettings::default();
@@ -476,6 +490,9 @@ impl RawScene {
         }
         if let Some(on) = self.shock_propagation {
             settings.shock_propagation = on;
+        }
+        if let Some(n) = self.max_substeps {
+            settings.max_substeps = n;
         }
         if self.sleeping == Some(true) {
             settings.sleeping = crate::Sleeping::on();

@@ -20,6 +20,7 @@ use crate::press::Presses;
 use crate::rewind::{RewindWorkspace, StepMotion};
 use crate::rows::{RowInputs, RowRuns};
 use crate::sleep::{self, Islands};
+use crate::substeps::{self, StepInputs};
 use crate::support::Outline;
 use crate::{
     Body, BodyDesc, BodyId, Solver, StepError, StepTimings, WorldBuilder, WorldError, WorldSettings,
@@ -84,6 +85,12 @@ pub struct World {
     pub(crate) last_dt: f64,
     /// The handle the next added body gets.
     next_id: u64,
+    /// How many substeps the step being taken is split into.
+    substep_count: usize,
+    /// Scratch: the awake dynamic bodies' thicknesses, for the substeps' count.
+    thicknesses: Vec<f64>,
+    /// The forces and targets of a step split into substeps.
+    step_inputs: StepInputs,
 }
 
 impl World {
@@ -119,6 +126,9 @@ impl World {
             direct_info: None,
             last_dt: 0.0,
             next_id: 0,
+            substep_count: 1,
+            thicknesses: Vec::new(),
+            step_inputs: StepInputs::default(),
         }
     }
 
@@ -257,8 +267,49 @@ impl World {
     /// pseudo-velocities that move the positions only, no body faster than
     /// `max_depenetration_speed`. Bodies created overlapping thus separate without being thrown
     /// — with the whole push in the velocities, pushes add up along chains of overlapping bodies.
+    ///
+    /// A step is split into equal substeps, each all of the above, when the typical body is
+    /// small for it ([`WorldSettings::max_substeps`]; see [`SAG_SHARE`](crate::SAG_SHARE)).
+    /// Forces set for the step act in each, a kinematic target is reached a share at a time,
+    /// and [`World::contacts`], [`World::problem`] and the contact forces are the last
+    /// substep's. Should a substep fail, the world is left as that substep found it.
     pub fn step(&mut self, dt: f64) -> Result<(), StepError> {
         check_time_step(dt)?;
+        let count = substeps::count(
+            &self.bodies,
+            &self.gravity,
+            dt,
+            self.settings.max_substeps,
+            &mut self.thicknesses,
+        );
+        self.substep_count = count;
+        if count == 1 {
+            self.substep(dt)?;
+        } else {
+            self.step_inputs.take(&self.bodies);
+            let mut timings = StepTimings::default();
+            for k in 0..count {
+                self.step_inputs.hand_to(&mut self.bodies, k, count);
+                self.substep(dt / count as f64)?;
+                let t = self.timings;
+                timings.collision += t.collision;
+                timings.setup += t.setup;
+                timings.solve += t.solve;
+                timings.correction += t.correction;
+                timings.integrate += t.integrate;
+            }
+            self.timings = timings;
+        }
+        let y = dt - self.time_compensation;
+        let t = self.time + y;
+        self.time_compensation = (t - self.time) - y;
+        self.time = t;
+        self.steps += 1;
+        Ok(())
+    }
+
+    /// One step of `dt` through every stage, as [`World::step`] describes.
+    fn substep(&mut self, dt: f64) -> Result<(), StepError> {
         let start = Instant::now();
         let warm = self.detect(dt);
         self.wake_islands();
@@ -277,11 +328,6 @@ impl World {
             correction: corrected - solved,
             integrate: integrated - corrected,
         };
-        let y = dt - self.time_compensation;
-        let t = self.time + y;
-        self.time_compensation = (t - self.time) - y;
-        self.time = t;
-        self.steps += 1;
         self.last_dt = dt;
         Ok(())
     }
@@ -304,6 +350,7 @@ impl World {
     /// ```
     pub fn prepare_step(&mut self, dt: f64) -> Result<&Problem<ContactProjection>, StepError> {
         check_time_step(dt)?;
+        self.substep_count = 1;
         let warm = self.detect(dt);
         self.wake_islands();
         self.build_problem(dt, warm)?;
@@ -410,6 +457,7 @@ impl World {
             model: self.settings.model,
             settings: &contact_settings,
             dt,
+            grip_dt: dt * self.substep_count as f64,
         };
         let mut out = ContactRows::of(problem, &mut self.biases);
         (self.row_runs).build(&mut self.contact_set, &inputs, &mut out, warm)?;

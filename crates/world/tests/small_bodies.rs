@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::turned;
+use common::{bin_walls, turned};
 use tatami_contact::ContactSettings;
 use tatami_world::dropped::{Random, mixed_shape};
 use tatami_world::{BodyDesc, Shape, World};
@@ -38,24 +38,12 @@ fn scaled(shape: Shape, scale: f64) -> Shape {
 /// A 12 cm square bin (a floor and four 1 cm walls) with `count` mixed shapes of 3–10 mm
 /// (1000 kg/m³, μ 0.5) dropped into it in layers of 25, turned at random.
 fn bin(count: usize) -> World {
-    let mut builder = World::builder().body(
+    let floor = World::builder().body(
         BodyDesc::fixed(Shape::cuboid([4.0, 4.0, 0.2]))
             .position([0.0, 0.0, -0.1])
             .friction(0.5),
     );
-    let (wall, span) = (0.01, 2.0 * HALF + 0.02);
-    for (x, y, sx, sy) in [
-        (HALF + wall / 2.0, 0.0, wall, span),
-        (-HALF - wall / 2.0, 0.0, wall, span),
-        (0.0, HALF + wall / 2.0, 2.0 * HALF, wall),
-        (0.0, -HALF - wall / 2.0, 2.0 * HALF, wall),
-    ] {
-        builder = builder.body(
-            BodyDesc::fixed(Shape::cuboid([sx, sy, 0.4]))
-                .position([x, y, 0.2])
-                .friction(0.5),
-        );
-    }
+    let mut builder = bin_walls(floor, HALF, 0.01, 0.4);
     let mut random = Random::new(3);
     for k in 0..count {
         let shape = scaled(mixed_shape(&mut random, k), 0.01);
