@@ -63,8 +63,8 @@ pub(crate) struct RowInputs<'a> {
     /// The step (s): a substep's, when the world's step is split.
     pub dt: f64,
     /// What a grip's press is divided by in place of `dt` (s): the world's step squared over
-    /// `dt` (`dt` times the substeps), so that a press gives one force however the step is
-    /// split ([`crate::substeps`]).
+    /// `dt` (`dt` times the substeps squared), so that a press gives one force however the
+    /// step is split ([`crate::substeps`]).
     pub grip_dt: f64,
 }
 

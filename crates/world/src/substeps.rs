@@ -22,11 +22,13 @@
 //!
 //! Off by default (`max_substeps` = 1) for what it was measured to cost elsewhere, with
 //! [`MAX_SUBSTEPS`](crate::MAX_SUBSTEPS): four 1 g cubes under a 100–1000 kg slab dropped on
-//! them (10⁵ : 1, cold-started each solve) crept up to 19 mm instead of 7 (face model) and
-//! 11 mm instead of 0.1 (vertex); a cube let go by kinematic fingers opening within a step
-//! leaves at the substep they let go in, up to a step's gravity sooner; a cube carried by them
-//! kept to their path within 0.14 mm instead of 5 µm (vertex model). Worlds of bodies over
-//! 30 cm at 60 Hz take one substep either way.
+//! them (10⁵ : 1) were knocked up to 19 mm aside instead of 7 (face model) and 11 mm instead of
+//! 0.1 (vertex), the slab rocking on them after it landed; a 20 cm cube carried by kinematic
+//! fingers from rest to 0.3 m/s within a step slipped 1 mm down them and turned 2 mrad (face
+//! model; 2–5 µm in one step), since a substep's friction can take only its share of the
+//! step's press while the fingers' change of speed comes within the first substep; and a cube
+//! the fingers let go of leaves at the substep they open in, up to a step's gravity sooner.
+//! Worlds of bodies over 30 cm at 60 Hz take one substep either way.
 
 use nalgebra::{Point3, UnitQuaternion, Vector3};
 

@@ -457,7 +457,7 @@ impl World {
             model: self.settings.model,
             settings: &contact_settings,
             dt,
-            grip_dt: dt * self.substep_count as f64,
+            grip_dt: dt * (self.substep_count * self.substep_count) as f64,
         };
         let mut out = ContactRows::of(problem, &mut self.biases);
         (self.row_runs).build(&mut self.contact_set, &inputs, &mut out, warm)?;

@@ -343,8 +343,22 @@ fn a_finger_pressing_a_cube_against_a_fixed_wall_holds_it() {
 /// The force-sensor read-out of a held cube (`World::contact_wrenches`): each finger presses it
 /// with its grip's press, `p/dt = m (d − slop)/dt²` along the normal, and holds half its weight
 /// by friction, to 1e-6 of each (the press is read to 1e-15; the friction is the solve's).
+/// The same with the step split in substeps (`max_substeps`; two for this 20 cm cube at 60
+/// Hz): the press is the world's step's, not the substep's.
 #[test]
 fn each_finger_reads_its_press_and_half_the_weight() {
+    for settings in [
+        WorldSettings::default(),
+        WorldSettings {
+            max_substeps: tatami_world::MAX_SUBSTEPS,
+            ..WorldSettings::default()
+        },
+    ] {
+        reads_its_press_and_half_the_weight(settings);
+    }
+}
+
+fn reads_its_press_and_half_the_weight(settings: WorldSettings) {
     let grasp = Grasp {
         turn: rotation([0.0, 0.0, 1.0], 61.0),
         centre: Point3::new(0.1, 0.0, 1.0),
@@ -354,7 +368,7 @@ fn each_finger_reads_its_press_and_half_the_weight() {
         ..Grasp::default()
     };
     let dt = 1.0 / 60.0;
-    let mut world = grasp.world(WorldSettings::default());
+    let mut world = grasp.world(settings);
     for _ in 0..30 {
         world.step(dt).expect("steps");
     }
