@@ -2,33 +2,37 @@
 //!
 //! What one step leaves undone grows as `g h²` against the bodies' size: the solve's residual is
 //! a share of gravity's `g h` a step, and the overlap it lets in, `g h²` times that share, is
-//! pushed out by a position pass that turns and shifts the bodies it pushes. Measured with the
-//! defaults at 60 Hz, 300 cubes poured into a walled bin settle within 6 s when they are 30 or
+//! pushed out by a position pass that turns and shifts the bodies it pushes. Measured in one
+//! step each at 60 Hz, 300 cubes poured into a walled bin settle within 6 s when they are 30 or
 //! 50 cm wide (`g h² / L` = 0.009 and 0.005); at 10–20 cm (0.014–0.027) they kept churning at
 //! 0.3–0.7 m/s with 1–2 cm overlaps after 10 s, under every model (Rapier 0.36 settles the
-//! 10 cm bin). Twice the sweeps did not settle them, twice the rate did, by 2 s, its step
-//! costing less over those seconds than the churning one.
+//! 10 cm bin). Twice the sweeps did not settle them; twice the rate did, by 2 s, its step
+//! costing less over those seconds than the churning one. Small bodies land as large ones do
+//! too: three stacked 1 cm cylinders went 6.7 mm into each other under the vertex model (0.35
+//! mm in substeps), and stacked cubes of 1–4 cm rested at the slop, a tenth of their size,
+//! where in substeps they rest within a hundredth.
 //!
 //! So a step is split into the fewest substeps `n` that bring `g (dt/n)²` within
 //! [`SAG_SHARE`] of the typical body's thickness (the median of the awake dynamic bodies' least
 //! widths), at most [`WorldSettings::max_substeps`](crate::WorldSettings::max_substeps). A
 //! world of 1 m bodies at 60 Hz, or of 2 m bodies at 100 Hz, takes one; 10 cm bodies at 60 Hz
-//! take two; 1 cm ones six (at most `max_substeps`). The median, not the thinnest, so that a few small bodies do not
+//! take two; 1 cm ones six. The median, not the thinnest, so that a few small bodies do not
 //! multiply the cost of a pile of large ones.
 //!
 //! Each substep is a whole step of `dt/n`; forces set for the step act in every substep, a
 //! kinematic body sent to a target goes a share of the way in each, and a grip's press gives
 //! the force it gives in one step of `dt`.
 //!
-//! Off by default (`max_substeps` = 1) for what it was measured to cost elsewhere, with
-//! [`MAX_SUBSTEPS`](crate::MAX_SUBSTEPS): four 1 g cubes under a 100–1000 kg slab dropped on
-//! them (10⁵ : 1) were knocked up to 19 mm aside instead of 7 (face model) and 11 mm instead of
-//! 0.1 (vertex), the slab rocking on them after it landed; a 20 cm cube carried by kinematic
-//! fingers from rest to 0.3 m/s within a step slipped 1 mm down them and turned 2 mrad (face
-//! model; 2–5 µm in one step), since a substep's friction can take only its share of the
-//! step's press while the fingers' change of speed comes within the first substep; and a cube
-//! the fingers let go of leaves at the substep they open in, up to a step's gravity sooner.
-//! Worlds of bodies over 30 cm at 60 Hz take one substep either way.
+//! What it costs, measured against one step each (`max_substeps` = 1): four 1 g cubes under a
+//! 100–1000 kg slab dropped on them (10⁵ : 1) were knocked up to 19 mm aside instead of 7
+//! (face model) and 11 mm instead of 0.1 (vertex), the slab rocking on them after it landed;
+//! a 20 cm cube carried by kinematic fingers that reach 0.3 m/s within one step slips 1 mm
+//! down them and turns 2 mrad (face model; 2–5 µm in one step), since a substep's friction
+//! takes only its share of the step's grip while the fingers' change of speed comes within
+//! the first substep (reached over 0.1 s, it follows them to 2 µm); and a cube the fingers
+//! let go of falls free from the substep they part in. Worlds of 1 m bodies at 60 Hz (the
+//! piles, pyramids and towers of the benchmarks) or 2 m bodies at 100 Hz (the paper's) take
+//! one substep and are stepped to the same bits as before.
 
 use nalgebra::{Point3, UnitQuaternion, Vector3};
 

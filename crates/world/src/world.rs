@@ -333,7 +333,8 @@ impl World {
     }
 
     /// Runs the first stages of a step of `dt` (collision, contact rows) from the current state
-    /// and returns the solver's input, without solving it or moving anything: impulses are
+    /// and returns the solver's input, without solving it or moving anything (one step of `dt`,
+    /// whatever substeps [`World::step`] would split it into): impulses are
     /// zero, and the bodies' velocities already include gravity's impulse. Experiments and
     /// benchmarks use it to compare or time solvers alone on a world's real problem.
     ///

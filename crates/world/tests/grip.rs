@@ -165,12 +165,15 @@ fn a_squeezed_cube_slides_at_the_grip_closed_form_rate_and_holds_above_it() {
 
 /// The fingers close on a cube 4 cm below their centres (the cube hangs off them, so the
 /// grips' twist holds it too), rest half a second, lift it 18 cm at 0.3 m/s and carry it 30 cm
-/// sideways. The cube follows their path to within 0.1 mm, along the squeeze and across it,
-/// and turns by under 0.1 mrad, under every model (measured 2–5 µm and 10–18 µrad; the solve
-/// stops at 0.1 mm/s a row); with the direct solver under the face model to within 1 mm
-/// (measured 0.18 mm: its friction is a 16-sided polygon's). Before grips the cube fell 30 m;
-/// before squeezed contacts were left out of the position pass, it was shifted 8 mm towards
-/// one finger, and under the vertex and patch models crept 17 and 54 mm down the fingers.
+/// sideways, each speed reached over 0.1 s. The cube follows their path to within 0.1 mm,
+/// along the squeeze and across it, and turns by under 0.1 mrad, under every model (measured
+/// 0.3–1.7 µm and 1–17 µrad; the solve stops at 0.1 mm/s a row); with the direct solver under
+/// the face model to within 1 mm (measured 1e-14 m). Before grips the cube fell 30 m; before
+/// squeezed contacts were left out of the position pass, it was shifted 8 mm towards one
+/// finger, and under the vertex and patch models crept 17 and 54 mm down the fingers. Each
+/// speed reached within one step, the 20 cm cube's two substeps at 60 Hz let it slip 1 mm
+/// and turn 2 mrad under the face model: in the first substep its grips' friction, a share of
+/// the step's, cannot give it the fingers' speed.
 #[test]
 fn a_cube_squeezed_between_kinematic_fingers_is_lifted_and_carried() {
     let grasp = Grasp {
@@ -196,13 +199,11 @@ fn a_cube_squeezed_between_kinematic_fingers_is_lifted_and_carried() {
         let mut world = grasp.world(WorldSettings { model, ..settings });
         let mut path = grasp.centre;
         let (mut off, mut along, mut turned) = (0.0_f64, 0.0_f64, 0.0_f64);
-        for step in 0..150 {
-            if (30..90).contains(&step) {
-                path.z += 0.3 / 60.0;
-            }
-            if step >= 90 {
-                path += grasp.turn * Vector3::y() * (0.3 / 60.0);
-            }
+        for step in 0..150_usize {
+            // Up from step 30, then sideways from step 90, each speed reached over 0.1 s.
+            let ramp = |from: usize| (step + 1).saturating_sub(from).min(6) as f64 / 6.0;
+            let (up, across) = (ramp(30) - ramp(90), ramp(90));
+            path += (Vector3::z() * up + grasp.turn * Vector3::y() * across) * (0.3 / 60.0);
             grasp.move_fingers(&mut world, path, UnitQuaternion::identity(), 0.0);
             world.step(1.0 / 60.0).expect("steps");
             let cube = &world.bodies()[2];
@@ -249,10 +250,11 @@ fn only_an_overlap_beyond_the_slop_grips() {
 
 /// Throwing: the fingers speed up to 2 m/s ahead and 1 m/s up over half a second, then open at
 /// 3 m/s: the cube leaves with the velocity they had, then flies free. Ten steps after the
-/// last step the grips held it (the fingers open within one step, from contacts found at its
-/// start), its velocity is the fingers' less ten steps of gravity, under every model, to
-/// 0.1 mm/s, the solve's stopping tolerance (measured 0.04, 0.04 and 0.26 µm/s under the
-/// vertex, patch and face models).
+/// step the fingers open in, its velocity is the fingers' less ten steps of gravity, under
+/// every model, to 0.1 mm/s (the solve's stopping tolerance) across, and along gravity less
+/// up to one more substep's: the 20 cm cube's step at 60 Hz is split in two, and it falls
+/// free from the substep the fingers part in (under the vertex model the second of the
+/// opening step's, under the others the next step's first).
 #[test]
 fn a_cube_let_go_flies_on_at_the_fingers_velocity() {
     let grasp = Grasp {
@@ -280,8 +282,12 @@ fn a_cube_let_go_flies_on_at_the_fingers_velocity() {
         }
         let expected = velocity - Vector3::z() * G * 10.0 * dt;
         let cube = world.bodies()[2].linear_velocity();
+        // Free from the substep the fingers part in: up to one substep's gravity more.
+        let extra_fall = expected.z - cube.z;
+        let substep = dt / 2.0;
         assert!(
-            (cube - expected).norm() < 1e-4,
+            (cube - expected).xy().norm() < 1e-4
+                && (-1e-4..G * substep + 1e-4).contains(&extra_fall),
             "{} model: flies at {cube:?}, expected {expected:?}",
             model.name()
         );
