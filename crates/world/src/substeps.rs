@@ -52,6 +52,10 @@ pub(crate) fn count(
     max: usize,
     thicknesses: &mut Vec<f64>,
 ) -> usize {
+    let fall = gravity.norm() * dt * dt;
+    if max <= 1 || fall == 0.0 {
+        return 1;
+    }
     thicknesses.clear();
     thicknesses.extend(
         bodies
@@ -59,12 +63,11 @@ pub(crate) fn count(
             .filter(|body| body.is_dynamic() && !body.asleep)
             .map(|body| body.thickness),
     );
-    if max <= 1 || thicknesses.is_empty() {
+    if thicknesses.is_empty() {
         return 1;
     }
     let middle = thicknesses.len() / 2;
     let (_, typical, _) = thicknesses.select_nth_unstable_by(middle, f64::total_cmp);
-    let fall = gravity.norm() * dt * dt;
     let needed = (fall / (SAG_SHARE * *typical)).sqrt().ceil();
     // Not NaN: the thickness is positive and finite, gravity and dt are validated.
     (needed as usize).clamp(1, max)
@@ -151,5 +154,11 @@ mod tests {
         assert_eq!(at_60_hz(&[(1.0, 3), (0.01, 2)]), 1, "a few small ones");
         assert_eq!(at_60_hz(&[(1.0, 2), (0.01, 3)]), 6);
         assert_eq!(at_60_hz(&[]), 1);
+        let world = World::builder()
+            .body(BodyDesc::dynamic(Shape::cuboid([0.01; 3])))
+            .build()
+            .unwrap();
+        let weightless = count(world.bodies(), &Vector3::zeros(), 1.0, 8, &mut Vec::new());
+        assert_eq!(weightless, 1, "no gravity, no fall");
     }
 }
