@@ -99,6 +99,45 @@ fn pile(seed: u64, shapes: impl Fn(&mut Random, usize) -> Shape) -> Scene {
     scene(bodies)
 }
 
+/// 300 cubes of 10 cm (500 kg/m³, μ 0.5) poured in layers, turned at random, into a walled
+/// bin 1 m across on the floor: bodies small for the step (Tatami splits it in two).
+fn bin() -> Scene {
+    let (size, half, wall) = (0.1, 0.5, 0.05);
+    let mut random = Random::new(7);
+    let mut bodies = vec![floor()];
+    let span = 2.0 * half + 2.0 * wall;
+    for (x, y, sx, sy) in [
+        (half + wall / 2.0, 0.0, wall, span),
+        (-half - wall / 2.0, 0.0, wall, span),
+        (0.0, half + wall / 2.0, 2.0 * half, wall),
+        (0.0, -half - wall / 2.0, 2.0 * half, wall),
+    ] {
+        bodies.push(
+            BodyDesc::fixed(Shape::cuboid([sx, sy, 2.0]))
+                .position([x, y, 1.0])
+                .friction(0.5),
+        );
+    }
+    let row = 6;
+    for k in 0..300 {
+        let (layer, cell) = (k / (row * row), k % (row * row));
+        let at = |i: usize| -half + 0.75 * size + i as f64 * 1.5 * size;
+        let jitter = 0.1 * size * random.between(-1.0, 1.0);
+        bodies.push(
+            BodyDesc::dynamic(Shape::cuboid([size; 3]))
+                .density(500.0)
+                .friction(0.5)
+                .position([
+                    at(cell / row) + jitter,
+                    at(cell % row) - jitter,
+                    0.3 + layer as f64 * 1.5 * size,
+                ])
+                .rotation(random_rotation(&mut random)),
+        );
+    }
+    scene(bodies)
+}
+
 fn tower() -> Scene {
     let path =
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/tower_100_60hz.json");
@@ -376,7 +415,7 @@ rapier_scene!(rapier_f32, rapier3d, f32);
 type Engine = fn(&Scene) -> Result<Measured, String>;
 
 fn main() {
-    let scenes: [(&str, Scene); 5] = [
+    let scenes: [(&str, Scene); 6] = [
         ("pyramid, base 20 (210 cubes)", pyramid(20)),
         ("pyramid, base 40 (820 cubes)", pyramid(40)),
         (
@@ -385,6 +424,7 @@ fn main() {
         ),
         ("1000 mixed shapes dropped", pile(2, mixed_shape)),
         ("tower of 100 cubes of 2 m", tower()),
+        ("bin of 300 cubes of 10 cm", bin()),
     ];
     let engines: [(&str, Engine); 4] = [
         ("tatami defaults", tatami),
