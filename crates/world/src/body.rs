@@ -68,11 +68,13 @@ pub struct BodyDesc {
     pub velocity: Vector3<f64>,
     /// Angular velocity (world axes).
     pub angular_velocity: Vector3<f64>,
-    /// Static friction coefficient.
+    /// Static friction coefficient. A touching pair's coefficients are the means of its two
+    /// bodies' (friction and restitution alike): a body of friction 0 against one of 0.6 slides
+    /// on it at 0.3, and a frictionless contact needs both bodies at 0.
     pub static_friction: f64,
-    /// Kinetic friction coefficient.
+    /// Kinetic friction coefficient (a pair's is the mean of its bodies').
     pub kinetic_friction: f64,
-    /// Restitution coefficient in `[0, 1]`.
+    /// Restitution coefficient in `[0, 1]` (a pair's is the mean of its bodies').
     pub restitution: f64,
 }
 
@@ -168,7 +170,8 @@ impl BodyDesc {
         self
     }
 
-    /// Sets both friction coefficients.
+    /// Sets both friction coefficients; a touching pair's are the means of its two bodies'
+    /// ([`BodyDesc::static_friction`]).
     pub fn friction(mut self, mu: f64) -> Self {
         self.static_friction = mu;
         self.kinetic_friction = mu;
