@@ -21,7 +21,7 @@
 use std::time::{Duration, Instant};
 
 use nalgebra::{Point3, Quaternion, UnitQuaternion, Vector3};
-use tatami_world::dropped::{Random, mixed_shape};
+use tatami_world::dropped::{Random, bin_walls, cubes_to_pour, mixed_shape};
 use tatami_world::scene::Scene;
 use tatami_world::{BodyDesc, Shape, WorldSettings};
 
@@ -102,39 +102,9 @@ fn pile(seed: u64, shapes: impl Fn(&mut Random, usize) -> Shape) -> Scene {
 /// 300 cubes of 10 cm (500 kg/m³, μ 0.5) poured in layers, turned at random, into a walled
 /// bin 1 m across on the floor: bodies small for the step (Tatami splits it in two).
 fn bin() -> Scene {
-    let (size, half, wall) = (0.1, 0.5, 0.05);
-    let mut random = Random::new(7);
     let mut bodies = vec![floor()];
-    let span = 2.0 * half + 2.0 * wall;
-    for (x, y, sx, sy) in [
-        (half + wall / 2.0, 0.0, wall, span),
-        (-half - wall / 2.0, 0.0, wall, span),
-        (0.0, half + wall / 2.0, 2.0 * half, wall),
-        (0.0, -half - wall / 2.0, 2.0 * half, wall),
-    ] {
-        bodies.push(
-            BodyDesc::fixed(Shape::cuboid([sx, sy, 2.0]))
-                .position([x, y, 1.0])
-                .friction(0.5),
-        );
-    }
-    let row = 6;
-    for k in 0..300 {
-        let (layer, cell) = (k / (row * row), k % (row * row));
-        let at = |i: usize| -half + 0.75 * size + i as f64 * 1.5 * size;
-        let jitter = 0.1 * size * random.between(-1.0, 1.0);
-        bodies.push(
-            BodyDesc::dynamic(Shape::cuboid([size; 3]))
-                .density(500.0)
-                .friction(0.5)
-                .position([
-                    at(cell / row) + jitter,
-                    at(cell % row) - jitter,
-                    0.3 + layer as f64 * 1.5 * size,
-                ])
-                .rotation(random_rotation(&mut random)),
-        );
-    }
+    bodies.extend(bin_walls(0.5, 0.05, 2.0));
+    bodies.extend(cubes_to_pour(0.1, 0.5, 300, 0.3, 7));
     scene(bodies)
 }
 

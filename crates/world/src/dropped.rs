@@ -81,6 +81,70 @@ pub fn mixed_shape(random: &mut Random, k: usize) -> Shape {
     }
 }
 
+/// The four fixed walls of a square bin about the vertical axis through the origin: inner
+/// half-width `half`, `wall` thick, `height` tall from z = 0, friction 0.5. Put a floor under
+/// them.
+///
+/// ```
+/// use tatami_world::dropped::bin_walls;
+/// let walls = bin_walls(0.5, 0.05, 1.0);
+/// assert!(walls.iter().all(|w| w.fixed && w.position.z == 0.5));
+/// ```
+pub fn bin_walls(half: f64, wall: f64, height: f64) -> [BodyDesc; 4] {
+    let span = 2.0 * half + 2.0 * wall;
+    [
+        (half + wall / 2.0, 0.0, wall, span),
+        (-half - wall / 2.0, 0.0, wall, span),
+        (0.0, half + wall / 2.0, 2.0 * half, wall),
+        (0.0, -half - wall / 2.0, 2.0 * half, wall),
+    ]
+    .map(|(x, y, sx, sy)| {
+        BodyDesc::fixed(Shape::cuboid([sx, sy, height]))
+            .position([x, y, height / 2.0])
+            .friction(0.5)
+    })
+}
+
+/// `count` cubes of side `size` (500 kg/m³, friction 0.5) to pour into a bin of inner
+/// half-width `half` ([`bin_walls`]): in layers of as many as fit 1.5 sides apart, the lowest
+/// at `from` (m, their centres), each shifted by up to a tenth of its side and turned at
+/// random (`seed`). The bin of small cubes that the world's tests and the benchmarks settle
+/// in substeps.
+///
+/// ```
+/// use tatami_world::dropped::cubes_to_pour;
+/// let cubes = cubes_to_pour(0.1, 0.5, 300, 0.3, 7);
+/// assert_eq!(cubes.len(), 300);
+/// assert!(cubes.iter().all(|c| c.position.x.abs() < 0.5 && c.position.z >= 0.3));
+/// ```
+pub fn cubes_to_pour(size: f64, half: f64, count: usize, from: f64, seed: u64) -> Vec<BodyDesc> {
+    let mut random = Random::new(seed);
+    let row = (2.0 * half / (1.5 * size)).floor().max(1.0) as usize;
+    let at = |i: usize| -half + 0.75 * size + i as f64 * 1.5 * size;
+    (0..count)
+        .map(|k| {
+            let (layer, cell) = (k / (row * row), k % (row * row));
+            let jitter = 0.1 * size * random.between(-1.0, 1.0);
+            let mut component = || random.between(-1.0, 1.0);
+            let turn = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+                component(),
+                component(),
+                component(),
+                component(),
+            ));
+            BodyDesc::dynamic(Shape::cuboid([size; 3]))
+                .density(500.0)
+                .friction(0.5)
+                .position([
+                    at(cell / row) + jitter,
+                    at(cell % row) - jitter,
+                    from + layer as f64 * 1.5 * size,
+                ])
+                .rotation(turn)
+        })
+        .collect()
+}
+
 /// A random shape no wider than 1.6 m, and points of its surface (the vertices; for round
 /// shapes, points of their rims) from which its extent along any direction follows.
 fn shape(random: &mut Random) -> (Shape, Vec<Vector3<f64>>) {

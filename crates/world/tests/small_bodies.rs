@@ -5,9 +5,9 @@
 
 mod common;
 
-use common::{bin_walls, turned};
+use common::turned;
 use tatami_contact::ContactSettings;
-use tatami_world::dropped::{Random, mixed_shape};
+use tatami_world::dropped::{Random, bin_walls, mixed_shape};
 use tatami_world::{BodyDesc, Shape, World};
 
 /// Inner half-width of the bin (m).
@@ -43,7 +43,7 @@ fn bin(count: usize) -> World {
             .position([0.0, 0.0, -0.1])
             .friction(0.5),
     );
-    let mut builder = bin_walls(floor, HALF, 0.01, 0.4);
+    let mut builder = (bin_walls(HALF, 0.01, 0.4).into_iter()).fold(floor, |b, wall| b.body(wall));
     let mut random = Random::new(3);
     for k in 0..count {
         let shape = scaled(mixed_shape(&mut random, k), 0.01);

@@ -1,39 +1,20 @@
 //! Substeps ([`WorldSettings::max_substeps`]): a step split when the typical body is small for
 //! it, with the step's forces in every substep and a kinematic target reached a share at a time.
 
-mod common;
-
-use common::{bin_walls, turned};
 use nalgebra::{Point3, UnitQuaternion, Vector3};
-use tatami_world::dropped::Random;
+use tatami_world::dropped::{bin_walls, cubes_to_pour};
 use tatami_world::{BodyDesc, Shape, World, WorldSettings};
 
-/// Cubes of `size` poured into a walled bin (inner half-width `half`) from a few layers, turned
-/// at random, under `settings`; the floor and the four walls come first.
-fn bin(settings: WorldSettings, size: f64, half: f64, cubes: usize) -> World {
-    let floor = World::builder().settings(settings).body(
-        BodyDesc::fixed(Shape::cuboid([8.0 * half, 8.0 * half, 0.2])).position([0.0, 0.0, -0.1]),
-    );
-    let mut builder = bin_walls(floor, half, 0.1 * half, 4.0 * half);
-    let mut random = Random::new(7);
-    let row = (2.0 * half / (1.5 * size)).floor() as usize;
-    for k in 0..cubes {
-        let (layer, cell) = (k / (row * row), k % (row * row));
-        let at = |i: usize| -half + 0.75 * size + i as f64 * 1.5 * size;
-        let jitter = 0.1 * size * random.between(-1.0, 1.0);
-        builder = builder.body(
-            BodyDesc::dynamic(Shape::cuboid([size; 3]))
-                .density(500.0)
-                .friction(0.5)
-                .position([
-                    at(cell / row) + jitter,
-                    at(cell % row) - jitter,
-                    0.6 * half + layer as f64 * 1.5 * size,
-                ])
-                .rotation(turned(&mut random)),
-        );
-    }
-    builder.build().unwrap()
+/// 300 cubes of 10 cm poured into a walled bin 1 m across under `settings`.
+fn bin(settings: WorldSettings) -> World {
+    let floor = BodyDesc::fixed(Shape::cuboid([4.0, 4.0, 0.2])).position([0.0, 0.0, -0.1]);
+    let bodies = std::iter::once(floor)
+        .chain(bin_walls(0.5, 0.05, 2.0))
+        .chain(cubes_to_pour(0.1, 0.5, 300, 0.3, 7));
+    bodies
+        .fold(World::builder().settings(settings), |b, body| b.body(body))
+        .build()
+        .unwrap()
 }
 
 /// 300 cubes of 10 cm poured into a 1 m bin at 60 Hz (`g dt² / L` = 0.027), with the default
@@ -44,7 +25,7 @@ fn bin(settings: WorldSettings, size: f64, half: f64, cubes: usize) -> World {
 #[test]
 fn a_bin_of_small_cubes_settles_in_substeps() {
     let settings = WorldSettings::default();
-    let mut world = bin(settings, 0.1, 0.5, 300);
+    let mut world = bin(settings);
     for _ in 0..360 {
         world.step(1.0 / 60.0).unwrap();
     }

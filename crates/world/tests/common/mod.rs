@@ -106,23 +106,3 @@ pub fn largest_move(world: &mut World, steps: usize, dt: f64) -> f64 {
         .map(|(b, p)| (b.position() - p).norm())
         .fold(0.0, f64::max)
 }
-
-/// Adds four fixed walls of thickness `wall`, `height` tall from z = 0 and friction 0.5,
-/// around the square of half-width `half` about the origin: a bin on whatever floor `builder`
-/// has.
-pub fn bin_walls(mut builder: WorldBuilder, half: f64, wall: f64, height: f64) -> WorldBuilder {
-    let span = 2.0 * half + 2.0 * wall;
-    for (x, y, sx, sy) in [
-        (half + wall / 2.0, 0.0, wall, span),
-        (-half - wall / 2.0, 0.0, wall, span),
-        (0.0, half + wall / 2.0, 2.0 * half, wall),
-        (0.0, -half - wall / 2.0, 2.0 * half, wall),
-    ] {
-        builder = builder.body(
-            BodyDesc::fixed(Shape::cuboid([sx, sy, height]))
-                .position([x, y, height / 2.0])
-                .friction(0.5),
-        );
-    }
-    builder
-}
