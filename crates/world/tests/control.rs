@@ -607,3 +607,65 @@ fn a_block_on_a_pulled_block_keeps_up_until_friction_gives() {
         }
     }
 }
+
+/// Boxes on a kinematic platform whose velocity grows by `a dt` each step (friction 1 for the
+/// tall box, 0.3 for the flat one; platform and box turned 29° about the vertical), at 60 Hz:
+/// a 20 × 30 × 100 cm box stays upright at 97% of the tipping acceleration `g w / h` and tips
+/// at 103%; a 60 × 50 × 20 cm box keeps with the platform at 97% of `μ g` and slides at 103%,
+/// under every model. The platform changes speed at each step's start, and the contacts give
+/// the boxes that change within the step, as a steady acceleration would (in substeps,
+/// `max_substeps`, they give it within the first substep only, and the tall box tips at 60%).
+#[test]
+fn boxes_on_an_accelerating_platform_tip_or_slide_at_the_closed_forms() {
+    let turn = rotation([0.0, 0.0, 1.0], 29.0);
+    let dt = 1.0 / 60.0;
+    for model in ContactModel::ALL {
+        for (tall, size, mu) in [(true, [0.2, 0.3, 1.0], 1.0), (false, [0.6, 0.5, 0.2], 0.3)] {
+            let threshold = if tall { G * size[0] / size[2] } else { mu * G };
+            for share in [0.97, 1.03] {
+                let mut world = World::builder()
+                    .model(model)
+                    .gravity([0.0, 0.0, -G])
+                    .body(
+                        BodyDesc::kinematic(Shape::cuboid([20.0, 20.0, 0.2]))
+                            .position([0.0, 0.0, -0.1])
+                            .rotation(turn)
+                            .friction(mu),
+                    )
+                    .body(
+                        BodyDesc::dynamic(Shape::cuboid(size))
+                            .mass(3.0)
+                            .friction(mu)
+                            .position([0.0, 0.0, size[2] / 2.0])
+                            .rotation(turn),
+                    )
+                    .build()
+                    .unwrap();
+                let (platform, body) = (world.bodies()[0].id(), world.bodies()[1].id());
+                let mut tilt: f64 = 0.0;
+                for k in 1..=120 {
+                    let speed = share * threshold * k as f64 * dt;
+                    world
+                        .set_velocity(platform, turn * Vector3::new(speed, 0.0, 0.0))
+                        .unwrap();
+                    world.step(dt).unwrap();
+                    let up = world.body_by_id(body).unwrap().rotation() * Vector3::z();
+                    tilt = tilt.max(up.z.clamp(-1.0, 1.0).acos());
+                }
+                let on = world.body_by_id(body).unwrap().position();
+                let under = world.body_by_id(platform).unwrap().position();
+                let slip = (on - under).xy().norm();
+                let case = format!(
+                    "{model:?}, {} box, {share} of it",
+                    if tall { "tall" } else { "flat" }
+                );
+                match (tall, share < 1.0) {
+                    (true, true) => assert!(tilt < 2e-3, "{case}: tilted {tilt} rad"),
+                    (true, false) => assert!(tilt > 1.5, "{case}: tilted only {tilt} rad"),
+                    (false, true) => assert!(slip < 1e-4, "{case}: slipped {slip} m"),
+                    (false, false) => assert!(slip > 0.05, "{case}: slipped only {slip} m"),
+                }
+            }
+        }
+    }
+}

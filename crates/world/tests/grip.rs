@@ -170,10 +170,11 @@ fn a_squeezed_cube_slides_at_the_grip_closed_form_rate_and_holds_above_it() {
 /// 0.3–1.7 µm and 1–17 µrad; the solve stops at 0.1 mm/s a row); with the direct solver under
 /// the face model to within 1 mm (measured 1e-14 m). Before grips the cube fell 30 m; before
 /// squeezed contacts were left out of the position pass, it was shifted 8 mm towards one
-/// finger, and under the vertex and patch models crept 17 and 54 mm down the fingers. Each
-/// speed reached within one step, the 20 cm cube's two substeps at 60 Hz let it slip 1 mm
-/// and turn 2 mrad under the face model: in the first substep its grips' friction, a share of
-/// the step's, cannot give it the fingers' speed.
+/// finger, and under the vertex and patch models crept 17 and 54 mm down the fingers. With
+/// the step split in substeps (`max_substeps`; two for this cube at 60 Hz) and each speed
+/// reached within one step, it slipped 1 mm and turned 2 mrad under the face model: in the
+/// first substep its grips' friction, a share of the step's, cannot give it the fingers'
+/// speed.
 #[test]
 fn a_cube_squeezed_between_kinematic_fingers_is_lifted_and_carried() {
     let grasp = Grasp {
@@ -252,9 +253,9 @@ fn only_an_overlap_beyond_the_slop_grips() {
 /// 3 m/s: the cube leaves with the velocity they had, then flies free. Ten steps after the
 /// step the fingers open in, its velocity is the fingers' less ten steps of gravity, under
 /// every model, to 0.1 mm/s (the solve's stopping tolerance) across, and along gravity less
-/// up to one more substep's: the 20 cm cube's step at 60 Hz is split in two, and it falls
-/// free from the substep the fingers part in (under the vertex model the second of the
-/// opening step's, under the others the next step's first).
+/// up to one more substep's: with the step split in substeps (`max_substeps`; two for this 20
+/// cm cube at 60 Hz) it falls free from the substep the fingers part in (the second of the
+/// opening step's under the vertex model); in one step, the default, at none.
 #[test]
 fn a_cube_let_go_flies_on_at_the_fingers_velocity() {
     let grasp = Grasp {

@@ -158,7 +158,7 @@ fn a_hull_created_deep_in_the_floor_on_a_vertex_comes_out() {
             )
             .build()
             .unwrap();
-        // The contact as created, before any step (a step of substeps moves the hull out).
+        // The contact as created, before any step moves the hull.
         world.prepare_step(1.0 / 60.0).unwrap();
         let depth = |world: &World| {
             world

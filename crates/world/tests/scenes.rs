@@ -196,11 +196,11 @@ fn solver_options_are_read() {
 fn contact_options_are_read_and_checked() {
     let text = scene_with(
         4,
-        r#"  "friction_cone": "box", "max_depenetration_speed": 2.5, "max_velocity_bias": 0, "twist_centre": "centroid", "friction_limit": "separate", "slop": 0.0001, "contact_margin": 0.001, "max_substeps": 1,"#,
+        r#"  "friction_cone": "box", "max_depenetration_speed": 2.5, "max_velocity_bias": 0, "twist_centre": "centroid", "friction_limit": "separate", "slop": 0.0001, "contact_margin": 0.001, "max_substeps": 8,"#,
     );
     let settings = Scene::from_json(&text).unwrap().settings;
     assert_eq!(settings.contact_margin, 0.001);
-    assert_eq!(settings.max_substeps, 1);
+    assert_eq!(settings.max_substeps, 8);
     assert_eq!(settings.contact.slop, 0.0001);
     let contact = settings.contact;
     assert_eq!(contact.friction_cone, tatami_world::FrictionCone::Box);
@@ -212,11 +212,7 @@ fn contact_options_are_read_and_checked() {
     assert_eq!(contact.max_depenetration_speed, 2.5);
     assert_eq!(contact.max_velocity_bias, 0.0);
     let plain_settings = Scene::from_json(&scene_with(0, "")).unwrap().settings;
-    assert_eq!(
-        plain_settings.max_substeps,
-        tatami_world::MAX_SUBSTEPS,
-        "substeps unless asked for"
-    );
+    assert_eq!(plain_settings.max_substeps, 1, "one step unless asked for");
     assert_eq!(
         plain_settings.contact_margin,
         WorldSettings::default().contact_margin

@@ -3,7 +3,7 @@
 
 use nalgebra::{Point3, UnitQuaternion, Vector3};
 use tatami_world::dropped::{bin_walls, cubes_to_pour};
-use tatami_world::{BodyDesc, Shape, World, WorldSettings};
+use tatami_world::{BodyDesc, MAX_SUBSTEPS, Shape, World, WorldSettings};
 
 /// 300 cubes of 10 cm poured into a walled bin 1 m across under `settings`.
 fn bin(settings: WorldSettings) -> World {
@@ -17,14 +17,21 @@ fn bin(settings: WorldSettings) -> World {
         .unwrap()
 }
 
-/// 300 cubes of 10 cm poured into a 1 m bin at 60 Hz (`g dt² / L` = 0.027), with the default
-/// settings: split into two substeps, they are at rest within 6 s, no two more than the slop
-/// (2 mm, 0.1 mm spared for the position pass) into each other. In one step each
-/// (`max_substeps` = 1) they still churned at 0.3–0.7 m/s with 1–2 cm overlaps after 10 s,
-/// under every model (Rapier 0.36 settles them).
+/// With up to [`MAX_SUBSTEPS`] a step.
+fn in_substeps() -> WorldSettings {
+    WorldSettings {
+        max_substeps: MAX_SUBSTEPS,
+        ..WorldSettings::default()
+    }
+}
+
+/// 300 cubes of 10 cm poured into a 1 m bin at 60 Hz (`g dt² / L` = 0.027), in substeps (two
+/// here): they are at rest within 6 s, no two more than the slop (2 mm, 0.1 mm spared for the
+/// position pass) into each other. In one step each, the default, they still churn at
+/// 0.3–0.7 m/s with 1–2 cm overlaps after 10 s, under every model (Rapier 0.36 settles them).
 #[test]
 fn a_bin_of_small_cubes_settles_in_substeps() {
-    let settings = WorldSettings::default();
+    let settings = in_substeps();
     let mut world = bin(settings);
     for _ in 0..360 {
         world.step(1.0 / 60.0).unwrap();
@@ -47,6 +54,7 @@ fn a_bin_of_small_cubes_settles_in_substeps() {
 #[test]
 fn forces_and_targets_last_the_whole_step() {
     let mut world = World::builder()
+        .settings(in_substeps())
         .body(BodyDesc::dynamic(Shape::cuboid([0.005; 3])).mass(0.01))
         .body(BodyDesc::kinematic(Shape::cuboid([0.005; 3])).position([1.0, 0.0, 0.0]))
         .body(
@@ -86,7 +94,7 @@ fn forces_and_targets_last_the_whole_step() {
 }
 
 /// A row of 30 dominoes of 1 × 2.5 × 5 cm, 3 cm apart, the first tipped at 20 rad/s, at 60
-/// Hz with the default settings (six substeps for 1 cm bodies): all fall, none more than 1
+/// Hz in substeps (six for 1 cm bodies): all fall, none more than 1
 /// mm into another on the way (the pairs' slop, a tenth of the thickness), under every model,
 /// and they end at rest. In one step each they went up to 6–8 mm into each other as each
 /// landed on the one before it.
@@ -95,7 +103,10 @@ fn a_row_of_dominoes_falls_without_sinking_into_each_other() {
     let (thick, wide, tall) = (0.01, 0.025, 0.05);
     for model in tatami_world::ContactModel::ALL {
         let mut builder = World::builder()
-            .model(model)
+            .settings(WorldSettings {
+                model,
+                ..in_substeps()
+            })
             .body(BodyDesc::fixed(Shape::cuboid([4.0, 4.0, 0.2])).position([0.0, 0.0, -0.1]));
         for k in 0..30 {
             let domino = BodyDesc::dynamic(Shape::cuboid([thick, wide, tall]))
