@@ -614,7 +614,8 @@ fn a_block_on_a_pulled_block_keeps_up_until_friction_gives() {
 /// at 103%; a 60 × 50 × 20 cm box keeps with the platform at 97% of `μ g` and slides at 103%,
 /// under every model. The platform changes speed at each step's start, and the contacts give
 /// the boxes that change within the step, as a steady acceleration would (in substeps,
-/// `max_substeps`, they give it within the first substep only, and the tall box tips at 60%).
+/// `max_substeps`, they give it within the first substep only: the tall box leans from 60%
+/// and goes over at 97%).
 #[test]
 fn boxes_on_an_accelerating_platform_tip_or_slide_at_the_closed_forms() {
     let turn = rotation([0.0, 0.0, 1.0], 29.0);
