@@ -108,7 +108,10 @@ impl BodyDesc {
 
     /// A kinematic body: it moves at its `velocity` and `angular_velocity` (or as
     /// [`World::set_kinematic_target`](crate::World::set_kinematic_target) says), is moved by
-    /// neither gravity nor contacts, and pushes dynamic bodies as if its mass were infinite.
+    /// neither gravity nor contacts, and pushes dynamic bodies as if its mass were infinite. A
+    /// step moves it by `velocity · dt` (to its target) exactly; when the step is split in
+    /// substeps, a change of its velocity is spread over them, so that within the step it
+    /// moves as if it changed speed steadily ([`WorldSettings::max_substeps`](crate::WorldSettings::max_substeps)).
     ///
     /// ```
     /// use tatami_world::{BodyDesc, Shape};
@@ -244,6 +247,9 @@ pub struct Body {
     pub(crate) torque: Vector3<f64>,
     /// A kinematic body's pose for the end of the next step: centre of mass and orientation.
     pub(crate) target: Option<(Point3<f64>, UnitQuaternion<f64>)>,
+    /// The linear and angular velocity a kinematic body moved at over its last step (from its
+    /// target, or as set), which a step split in substeps turns from ([`crate::substeps`]).
+    pub(crate) drive: (Vector3<f64>, Vector3<f64>),
     /// Asleep (see [`crate::Sleeping`]): not solved, not moved, until woken.
     pub(crate) asleep: bool,
     /// How long (s) the body has been slower than the sleeping thresholds.
@@ -418,6 +424,7 @@ impl Body {
             force: Vector3::zeros(),
             torque: Vector3::zeros(),
             target: None,
+            drive: (Vector3::zeros(), Vector3::zeros()),
             asleep: false,
             rest_time: 0.0,
             thickness: f64::INFINITY,

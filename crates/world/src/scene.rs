@@ -13,7 +13,7 @@
 //! `max_depenetration_speed` (m/s, > 0) and `max_velocity_bias` (m/s, ≥ 0; see
 //! [`tatami_contact::ContactSettings`]), `contact_margin` (m, ≥ 0; see
 //! [`WorldSettings::contact_margin`]: each pair's, and its slop, are held to its thinner
-//! body's thickness below 2 cm), and `max_substeps` (1 to 1000, 1 by default: see
+//! body's thickness below 2 cm), and `max_substeps` (1 to 1000, 8 by default: see
 //! [`WorldSettings::max_substeps`]). A body may be `"kinematic": true`: it moves at its
 //! `velocity` and `angular_velocity` whatever touches it (see [`BodyDesc::kinematic`]).
 //!

@@ -80,17 +80,15 @@ pub struct WorldSettings {
     /// Off by default.
     pub sleeping: Sleeping,
     /// Most substeps a step is split into when its bodies are small for it (1 to
-    /// [`SUBSTEP_LIMIT`]; 1, the default, never splits): a step falls into the fewest that keep
-    /// gravity's fall in one, `g (dt/n)²`, within [`SAG_SHARE`](crate::SAG_SHARE) of the
-    /// typical body's thickness. [`MAX_SUBSTEPS`] settles piles of small bodies that churn in
-    /// one step; off by default for what it does to kinematic drivers (see
-    /// [`SAG_SHARE`](crate::SAG_SHARE)).
+    /// [`SUBSTEP_LIMIT`]; 1 never splits): a step falls into the fewest that keep gravity's
+    /// fall in one, `g (dt/n)²`, within [`SAG_SHARE`](crate::SAG_SHARE) of the typical body's
+    /// thickness. Default [`MAX_SUBSTEPS`].
     pub max_substeps: usize,
 }
 
-/// A [`WorldSettings::max_substeps`] for worlds of small bodies: 8, which brings 5 mm bodies at
-/// 60 Hz within [`SAG_SHARE`](crate::SAG_SHARE). Worlds of bodies over 27 cm at 60 Hz, or over
-/// 10 cm at 100 Hz, take one step with it too.
+/// Default [`WorldSettings::max_substeps`]: 8, which brings 5 mm bodies at 60 Hz within
+/// [`SAG_SHARE`](crate::SAG_SHARE). Worlds of bodies over 27 cm at 60 Hz, or over 10 cm at
+/// 100 Hz, take one step as before.
 pub const MAX_SUBSTEPS: usize = 8;
 
 /// Largest [`WorldSettings::max_substeps`] a world takes.
@@ -106,7 +104,7 @@ impl Default for WorldSettings {
             feature_angle: 1f64.to_radians(),
             shock_propagation: true,
             sleeping: Sleeping::default(),
-            max_substeps: 1,
+            max_substeps: MAX_SUBSTEPS,
         }
     }
 }

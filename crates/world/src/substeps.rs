@@ -23,21 +23,17 @@
 //! kinematic body sent to a target goes a share of the way in each, and a grip's press gives
 //! the force it gives in one step of `dt`.
 //!
-//! Off by default (`max_substeps` = 1), for what it does to bodies driven through kinematic
-//! ones. A kinematic body's velocity changes at the start of a step, all at once; in one
-//! step, the contacts give the bodies it carries that change within the step, as a steady
-//! acceleration would, but in substeps within the first, a share of the step: friction, a
-//! share of the step's too, falls short. Measured with [`MAX_SUBSTEPS`](crate::MAX_SUBSTEPS)
-//! at 60 Hz: a 20 × 30 × 100 cm box on a platform whose velocity grows by `a dt` a step tilts
-//! 0.46 rad at 97% of the tipping acceleration `g w / h` (face model; exactly upright in one
-//! step) and a flat box on it slips 2.3 cm in 2 s at 97% of `μ g` (none in one step); a 20 cm
-//! cube carried by kinematic fingers that reach 0.3 m/s within one step slips 1 mm and turns
-//! 2 mrad (2–5 µm in one step). Spreading a kinematic body's change of velocity over the
-//! substeps would cure it, at the price of moving it otherwise than `v dt` a step. Also
-//! measured: four 1 g cubes under a 100–1000 kg slab dropped on them (10⁵ : 1) were knocked
-//! up to 19 mm aside instead of 7 (face model) and 11 mm instead of 0.1 (vertex), the slab
-//! rocking on them after it landed. Worlds of 1 m bodies at 60 Hz (the piles, pyramids and
-//! towers of the benchmarks) or 2 m bodies at 100 Hz (the paper's) take one substep either way.
+//! A kinematic body's change of velocity is spread over the substeps ([`StepInputs`]); given
+//! all at once at the step's start, the bodies it carries had to take it within the first
+//! substep with a substep's share of friction, and a tall box on an accelerating platform went
+//! over at 97% of its tipping acceleration. What substeps still cost, measured against one
+//! step each: four 1 g cubes under a 100–1000 kg slab dropped on them (10⁵ : 1) are knocked up
+//! to 19 mm aside instead of 7 (face model) and 11 mm instead of 0.1 (vertex), the slab rocking
+//! on them after it lands; a 20 cm cube held by kinematic fingers that reach 0.3 m/s within
+//! one step slips 0.36 mm and turns 1 mrad (face model; 2–5 µm in one step); a small-body
+//! world's step costs up to `n` times as much. Worlds of 1 m bodies at 60 Hz (the piles,
+//! pyramids and towers of the benchmarks) or 2 m bodies at 100 Hz (the paper's) take one
+//! substep and are stepped to the same bits as before.
 
 use nalgebra::{Point3, UnitQuaternion, Vector3};
 
@@ -79,53 +75,115 @@ pub(crate) fn count(
 }
 
 /// What a step's caller set for the whole step, handed to each of its substeps: the applied
-/// forces and torques (which a substep clears), and each kinematic target, reached a share
-/// at a time. Buffers reused.
+/// forces and torques (which a substep clears), and each kinematic body's drive. A kinematic
+/// body's velocity for the step (as set, or what takes it to its target) is reached over the
+/// step, not at its start: in substep `k` of `n` it moves at `v + (v − v₀)((k + ½)/n − ½)`,
+/// `v₀` its last step's, which averages `v` over the step (so the step moves it `v dt`, to its
+/// target exactly) and, for a steady acceleration, grows by the same amount every substep
+/// across steps. Given in one change at the step's start, the bodies it carries had to take it
+/// within the first substep with a substep's share of friction: a tall box on an accelerating
+/// platform went over at 97% of its tipping acceleration, a flat one slipped from 60% of
+/// `μ g` (one step: exact). Buffers reused.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct StepInputs {
     /// Per body with one: its force and torque.
     loads: Vec<(usize, Vector3<f64>, Vector3<f64>)>,
-    /// Per kinematic body sent to a target: where it starts and the target.
-    targets: Vec<(usize, Pose, Pose)>,
+    /// Per kinematic body.
+    drives: Vec<Drive>,
+}
+
+/// A kinematic body's motion over a step.
+#[derive(Debug, Clone, Copy)]
+struct Drive {
+    index: usize,
+    /// Where it starts.
+    start: Pose,
+    /// Its linear and angular velocity over the last step, and over this one.
+    from: Velocities,
+    to: Velocities,
+    /// Its target, if one sends it.
+    target: Option<Pose>,
 }
 
 /// A centre of mass and an orientation.
 type Pose = (Point3<f64>, UnitQuaternion<f64>);
 
+/// A linear and an angular velocity.
+type Velocities = (Vector3<f64>, Vector3<f64>);
+
 impl StepInputs {
-    /// Reads the step's inputs from `bodies`.
-    pub(crate) fn take(&mut self, bodies: &[Body]) {
+    /// Reads the inputs of a step of `dt` from `bodies`.
+    pub(crate) fn take(&mut self, bodies: &[Body], dt: f64) {
         self.loads.clear();
-        self.targets.clear();
+        self.drives.clear();
         for (index, body) in bodies.iter().enumerate() {
             if body.force != Vector3::zeros() || body.torque != Vector3::zeros() {
                 self.loads.push((index, body.force, body.torque));
             }
-            if let Some(target) = body.target {
-                self.targets
-                    .push((index, (body.centre, body.rotation), target));
+            if !body.is_kinematic() {
+                continue;
             }
+            let to = match body.target {
+                Some((centre, rotation)) => (
+                    (centre - body.centre) / dt,
+                    (rotation * body.rotation.inverse()).scaled_axis() / dt,
+                ),
+                None => (body.linear_velocity, body.angular_velocity),
+            };
+            self.drives.push(Drive {
+                index,
+                start: (body.centre, body.rotation),
+                from: body.drive,
+                to,
+                target: body.target,
+            });
         }
     }
 
-    /// Sets the inputs of substep `k` (from 0) of `count` on `bodies`: the forces again, and
-    /// each target `(k + 1) / count` of the way from where its body started.
-    pub(crate) fn hand_to(&self, bodies: &mut [Body], k: usize, count: usize) {
+    /// Sets the inputs of substep `k` (from 0) of `count` of a step of `dt` on `bodies`: the
+    /// forces again, and each kinematic body's velocity for the substep, or its target at the
+    /// substep's end.
+    pub(crate) fn hand_to(&self, bodies: &mut [Body], k: usize, count: usize, dt: f64) {
         for &(index, force, torque) in &self.loads {
             bodies[index].force = force;
             bodies[index].torque = torque;
         }
-        let share = (k + 1) as f64 / count as f64;
-        for &(index, (centre, rotation), (to_centre, to_rotation)) in &self.targets {
-            let turn = (to_rotation * rotation.inverse()).scaled_axis() * share;
-            let mut on_the_way = UnitQuaternion::from_scaled_axis(turn) * rotation;
-            on_the_way.renormalize();
-            let last = k + 1 == count;
-            bodies[index].target = Some(if last {
-                (to_centre, to_rotation)
-            } else {
-                (centre + (to_centre - centre) * share, on_the_way)
-            });
+        let n = count as f64;
+        let h = dt / n;
+        for drive in &self.drives {
+            let body = &mut bodies[drive.index];
+            let ((v0, w0), (v, w)) = (drive.from, drive.to);
+            match drive.target {
+                Some(target) if k + 1 == count => body.target = Some(target),
+                Some(_) => {
+                    // Σ over the substeps so far of ((i + ½)/n − ½), i = 0..=k.
+                    let done = (k + 1) as f64;
+                    let ramp = done * done / (2.0 * n) - done / 2.0;
+                    let (centre, rotation) = drive.start;
+                    let moved = (v * done + (v - v0) * ramp) * h;
+                    let turned = (w * done + (w - w0) * ramp) * h;
+                    let mut on_the_way = UnitQuaternion::from_scaled_axis(turned) * rotation;
+                    on_the_way.renormalize();
+                    body.target = Some((centre + moved, on_the_way));
+                }
+                None => {
+                    let ramp = (k as f64 + 0.5) / n - 0.5;
+                    body.linear_velocity = v + (v - v0) * ramp;
+                    body.angular_velocity = w + (w - w0) * ramp;
+                }
+            }
+        }
+    }
+
+    /// Ends the step on `bodies`: each kinematic body keeps the velocity it was set (a body a
+    /// target sent rests there) and remembers its step's ([`Body::drive`]).
+    pub(crate) fn finish(&self, bodies: &mut [Body]) {
+        for drive in &self.drives {
+            let body = &mut bodies[drive.index];
+            if drive.target.is_none() {
+                (body.linear_velocity, body.angular_velocity) = drive.to;
+            }
+            body.drive = drive.to;
         }
     }
 }

@@ -283,13 +283,13 @@ impl World {
             &mut self.thicknesses,
         );
         self.substep_count = count;
+        self.step_inputs.take(&self.bodies, dt);
         if count == 1 {
             self.substep(dt)?;
         } else {
-            self.step_inputs.take(&self.bodies);
             let mut timings = StepTimings::default();
             for k in 0..count {
-                self.step_inputs.hand_to(&mut self.bodies, k, count);
+                self.step_inputs.hand_to(&mut self.bodies, k, count, dt);
                 self.substep(dt / count as f64)?;
                 let t = self.timings;
                 timings.collision += t.collision;
@@ -300,6 +300,7 @@ impl World {
             }
             self.timings = timings;
         }
+        self.step_inputs.finish(&mut self.bodies);
         let y = dt - self.time_compensation;
         let t = self.time + y;
         self.time_compensation = (t - self.time) - y;

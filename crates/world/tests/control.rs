@@ -609,13 +609,14 @@ fn a_block_on_a_pulled_block_keeps_up_until_friction_gives() {
 }
 
 /// Boxes on a kinematic platform whose velocity grows by `a dt` each step (friction 1 for the
-/// tall box, 0.3 for the flat one; platform and box turned 29° about the vertical), at 60 Hz:
-/// a 20 × 30 × 100 cm box stays upright at 97% of the tipping acceleration `g w / h` and tips
-/// at 103%; a 60 × 50 × 20 cm box keeps with the platform at 97% of `μ g` and slides at 103%,
-/// under every model. The platform changes speed at each step's start, and the contacts give
-/// the boxes that change within the step, as a steady acceleration would (in substeps,
-/// `max_substeps`, they give it within the first substep only: the tall box leans from 60%
-/// and goes over at 97%).
+/// tall box, 0.3 for the flat one; platform and box turned 29° about the vertical), at 60 Hz
+/// with the defaults (two substeps for these boxes): a 20 × 30 × 100 cm box stays upright (to
+/// 2 mrad; measured 0.8) at 97% of the tipping acceleration `g w / h` and tips at 103%; a 60 ×
+/// 50 × 20 cm box keeps with the platform (to 1 mm; measured 0.8, from the first step, where
+/// the platform starts from rest) at 97% of `μ g` and slides at 103%, under every model. The
+/// platform's change of speed is spread over each step's substeps (`substeps::StepInputs`):
+/// given all at the step's start, the boxes took it within the first substep, the tall one
+/// went over at 97% and the flat one slipped from 60%.
 #[test]
 fn boxes_on_an_accelerating_platform_tip_or_slide_at_the_closed_forms() {
     let turn = rotation([0.0, 0.0, 1.0], 29.0);
@@ -663,7 +664,7 @@ fn boxes_on_an_accelerating_platform_tip_or_slide_at_the_closed_forms() {
                 match (tall, share < 1.0) {
                     (true, true) => assert!(tilt < 2e-3, "{case}: tilted {tilt} rad"),
                     (true, false) => assert!(tilt > 1.5, "{case}: tilted only {tilt} rad"),
-                    (false, true) => assert!(slip < 1e-4, "{case}: slipped {slip} m"),
+                    (false, true) => assert!(slip < 1e-3, "{case}: slipped {slip} m"),
                     (false, false) => assert!(slip > 0.05, "{case}: slipped only {slip} m"),
                 }
             }

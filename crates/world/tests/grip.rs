@@ -171,10 +171,9 @@ fn a_squeezed_cube_slides_at_the_grip_closed_form_rate_and_holds_above_it() {
 /// the face model to within 1 mm (measured 1e-14 m). Before grips the cube fell 30 m; before
 /// squeezed contacts were left out of the position pass, it was shifted 8 mm towards one
 /// finger, and under the vertex and patch models crept 17 and 54 mm down the fingers. With
-/// the step split in substeps (`max_substeps`; two for this cube at 60 Hz) and each speed
-/// reached within one step, it slipped 1 mm and turned 2 mrad under the face model: in the
-/// first substep its grips' friction, a share of the step's, cannot give it the fingers'
-/// speed.
+/// each speed reached within one step, in the two substeps a step this cube takes at 60 Hz,
+/// it slips 0.36 mm and turns 1 mrad under the face model (2–5 µm in one step): its grips'
+/// friction, a share of the step's in each substep, lags the fingers' change of speed.
 #[test]
 fn a_cube_squeezed_between_kinematic_fingers_is_lifted_and_carried() {
     let grasp = Grasp {
@@ -253,9 +252,9 @@ fn only_an_overlap_beyond_the_slop_grips() {
 /// 3 m/s: the cube leaves with the velocity they had, then flies free. Ten steps after the
 /// step the fingers open in, its velocity is the fingers' less ten steps of gravity, under
 /// every model, to 0.1 mm/s (the solve's stopping tolerance) across, and along gravity less
-/// up to one more substep's: with the step split in substeps (`max_substeps`; two for this 20
-/// cm cube at 60 Hz) it falls free from the substep the fingers part in (the second of the
-/// opening step's under the vertex model); in one step, the default, at none.
+/// up to one more substep's: the step split in two substeps for this 20 cm cube at 60 Hz, it
+/// falls free from the substep the fingers part in (the second of the opening step's under
+/// the vertex model); in one step (`max_substeps` = 1), at none.
 #[test]
 fn a_cube_let_go_flies_on_at_the_fingers_velocity() {
     let grasp = Grasp {

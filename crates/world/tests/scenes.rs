@@ -212,7 +212,11 @@ fn contact_options_are_read_and_checked() {
     assert_eq!(contact.max_depenetration_speed, 2.5);
     assert_eq!(contact.max_velocity_bias, 0.0);
     let plain_settings = Scene::from_json(&scene_with(0, "")).unwrap().settings;
-    assert_eq!(plain_settings.max_substeps, 1, "one step unless asked for");
+    assert_eq!(
+        plain_settings.max_substeps,
+        tatami_world::MAX_SUBSTEPS,
+        "substeps unless asked for"
+    );
     assert_eq!(
         plain_settings.contact_margin,
         WorldSettings::default().contact_margin

