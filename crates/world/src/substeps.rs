@@ -80,7 +80,8 @@ pub(crate) fn count(
 /// step, not at its start: in substep `k` of `n` it moves at `v + (v − v₀)((k + ½)/n − ½)`,
 /// `v₀` its last step's, which averages `v` over the step (so the step moves it `v dt`, to its
 /// target exactly) and, for a steady acceleration, grows by the same amount every substep
-/// across steps. Given in one change at the step's start, the bodies it carries had to take it
+/// across steps (a body stopped runs on and comes back within its stopping step, by at most
+/// `v₀ dt / 8`). Given in one change at the step's start, the bodies it carries had to take it
 /// within the first substep with a substep's share of friction: a tall box on an accelerating
 /// platform went over at 97% of its tipping acceleration, a flat one slipped from 60% of
 /// `μ g` (one step: exact). Buffers reused.
