@@ -100,8 +100,7 @@ fn pile(seed: u64, shapes: impl Fn(&mut Random, usize) -> Shape) -> Scene {
 }
 
 /// 300 cubes of 10 cm (500 kg/m³, μ 0.5) poured in layers, turned at random, into a walled
-/// bin 1 m across on the floor: bodies small for the step (in substeps, Tatami splits it in
-/// two).
+/// bin 1 m across on the floor: bodies small for the step (Tatami's defaults split it in two).
 fn bin() -> Scene {
     let mut bodies = vec![floor()];
     bodies.extend(bin_walls(0.5, 0.05, 2.0));
@@ -216,14 +215,6 @@ fn tatami(scene: &Scene) -> Result<Measured, String> {
 fn tatami_sleeping(scene: &Scene) -> Result<Measured, String> {
     let settings = WorldSettings {
         sleeping: tatami_world::Sleeping::on(),
-        ..scene.settings
-    };
-    run_tatami(scene, settings)
-}
-
-fn tatami_substeps(scene: &Scene) -> Result<Measured, String> {
-    let settings = WorldSettings {
-        max_substeps: tatami_world::MAX_SUBSTEPS,
         ..scene.settings
     };
     run_tatami(scene, settings)
@@ -405,10 +396,9 @@ fn main() {
         ("tower of 100 cubes of 2 m", tower()),
         ("bin of 300 cubes of 10 cm", bin()),
     ];
-    let engines: [(&str, Engine); 5] = [
+    let engines: [(&str, Engine); 4] = [
         ("tatami defaults", tatami),
         ("tatami, sleeping on", tatami_sleeping),
-        ("tatami, substeps", tatami_substeps),
         ("rapier3d-f64", rapier_f64),
         ("rapier3d (f32)", rapier_f32),
     ];

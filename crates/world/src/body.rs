@@ -634,6 +634,17 @@ impl Body {
         self.angular_velocity = motion.angular_velocity;
     }
 
+    /// The linear and angular velocity that take a kinematic body from its pose to its
+    /// target in `dt`, if it has one.
+    pub(crate) fn velocity_to_target(&self, dt: f64) -> Option<(Vector3<f64>, Vector3<f64>)> {
+        self.target.map(|(centre, rotation)| {
+            (
+                (centre - self.centre) / dt,
+                (rotation * self.rotation.inverse()).scaled_axis() / dt,
+            )
+        })
+    }
+
     /// The body as the solver sees it (fixed and kinematic bodies have zero inverse mass and
     /// inertia; a kinematic body keeps its velocity).
     pub(crate) fn solver_body(&self) -> SolverBody {

@@ -411,25 +411,20 @@ fn named_once<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<RawBody>, D::Error>
 }
 
 fn at_least_one<'de, D: Deserializer<'de>>(d: D) -> Result<Option<usize>, D::Error> {
-    let n = usize::deserialize(d)?;
-    if !(1..=crate::settings::MAX_ITERATIONS).contains(&n) {
-        return Err(serde::de::Error::custom(format!(
-            "must be 1 to {}, got {n}",
-            crate::settings::MAX_ITERATIONS
-        )));
-    }
-    Ok(Some(n))
+    one_to(usize::deserialize(d)?, crate::settings::MAX_ITERATIONS)
 }
 
 fn substep_limit<'de, D: Deserializer<'de>>(d: D) -> Result<Option<usize>, D::Error> {
-    let n = usize::deserialize(d)?;
-    if !(1..=crate::SUBSTEP_LIMIT).contains(&n) {
-        return Err(serde::de::Error::custom(format!(
-            "must be 1 to {}, got {n}",
-            crate::SUBSTEP_LIMIT
-        )));
+    one_to(usize::deserialize(d)?, crate::SUBSTEP_LIMIT)
+}
+
+/// `n` if it is from 1 to `most`, else the error naming the range.
+fn one_to<E: serde::de::Error>(n: usize, most: usize) -> Result<Option<usize>, E> {
+    if (1..=most).contains(&n) {
+        Ok(Some(n))
+    } else {
+        Err(E::custom(format!("must be 1 to {most}, got {n}")))
     }
-    Ok(Some(n))
 }
 
 impl RawScene {

@@ -81,10 +81,7 @@ pub(crate) fn count(
 /// `v₀` its last step's, which averages `v` over the step (so the step moves it `v dt`, to its
 /// target exactly) and, for a steady acceleration, grows by the same amount every substep
 /// across steps (a body stopped runs on and comes back within its stopping step, by at most
-/// `v₀ dt / 8`). Given in one change at the step's start, the bodies it carries had to take it
-/// within the first substep with a substep's share of friction: a tall box on an accelerating
-/// platform went over at 97% of its tipping acceleration, a flat one slipped from 60% of
-/// `μ g` (one step: exact). Buffers reused.
+/// `v₀ dt / 8`); why, in the module doc. Buffers reused.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct StepInputs {
     /// Per body with one: its force and torque.
@@ -124,13 +121,9 @@ impl StepInputs {
             if !body.is_kinematic() {
                 continue;
             }
-            let to = match body.target {
-                Some((centre, rotation)) => (
-                    (centre - body.centre) / dt,
-                    (rotation * body.rotation.inverse()).scaled_axis() / dt,
-                ),
-                None => (body.linear_velocity, body.angular_velocity),
-            };
+            let to = body
+                .velocity_to_target(dt)
+                .unwrap_or((body.linear_velocity, body.angular_velocity));
             self.drives.push(Drive {
                 index,
                 start: (body.centre, body.rotation),

@@ -20,6 +20,17 @@ pub struct StepTimings {
     pub integrate: Duration,
 }
 
+impl std::ops::AddAssign for StepTimings {
+    /// Adds `other`'s stages to these: a step's timings are its substeps' sums.
+    fn add_assign(&mut self, other: Self) {
+        self.collision += other.collision;
+        self.setup += other.setup;
+        self.solve += other.solve;
+        self.correction += other.correction;
+        self.integrate += other.integrate;
+    }
+}
+
 impl StepTimings {
     /// Sum of the stages.
     pub fn total(&self) -> Duration {

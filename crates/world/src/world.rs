@@ -89,7 +89,7 @@ pub struct World {
     substep_count: usize,
     /// Scratch: the awake dynamic bodies' thicknesses, for the substeps' count.
     thicknesses: Vec<f64>,
-    /// The forces and targets of a step split into substeps.
+    /// The step's forces and kinematic drives, handed to its substeps.
     step_inputs: StepInputs,
 }
 
@@ -291,12 +291,7 @@ impl World {
             for k in 0..count {
                 self.step_inputs.hand_to(&mut self.bodies, k, count, dt);
                 self.substep(dt / count as f64)?;
-                let t = self.timings;
-                timings.collision += t.collision;
-                timings.setup += t.setup;
-                timings.solve += t.solve;
-                timings.correction += t.correction;
-                timings.integrate += t.integrate;
+                timings += self.timings;
             }
             self.timings = timings;
         }
@@ -393,9 +388,10 @@ impl World {
     /// only once inside it, and passed through it under the vertex and patch models.
     fn detect(&mut self, dt: f64) -> Option<parallel::Warm> {
         for body in &mut self.bodies {
-            if let (BodyKind::Kinematic, Some((centre, rotation))) = (body.kind(), body.target) {
-                body.linear_velocity = (centre - body.centre) / dt;
-                body.angular_velocity = (rotation * body.rotation.inverse()).scaled_axis() / dt;
+            if body.kind() == BodyKind::Kinematic
+                && let Some(velocities) = body.velocity_to_target(dt)
+            {
+                (body.linear_velocity, body.angular_velocity) = velocities;
             }
         }
         let collision = CollisionSettings::of(&self.settings);
