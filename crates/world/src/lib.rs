@@ -64,7 +64,7 @@ pub use settings::{
 };
 pub use shape::{HullMesh, LENGTHS, MassProperties, Shape};
 pub use sleep::{SLEEP_DEPTH_TOLERANCE, Sleeping};
-pub use substeps::SAG_SHARE;
+pub use substeps::{MAX_SUBSTEP_TURN, SAG_SHARE};
 pub use tatami_contact::{
     ContactModel, ContactProjection, ContactSettings, FrictionCone, FrictionLimit, TwistCentre,
 };

@@ -79,10 +79,11 @@ pub struct WorldSettings {
     /// Islands of bodies at rest fall asleep and cost nothing until woken (see [`Sleeping`]).
     /// Off by default.
     pub sleeping: Sleeping,
-    /// Most substeps a step is split into when its bodies are small for it (1 to
-    /// [`SUBSTEP_LIMIT`]; 1 never splits): a step falls into the fewest that keep gravity's
-    /// fall in one, `g (dt/n)²`, within [`SAG_SHARE`](crate::SAG_SHARE) of the typical body's
-    /// thickness. Default [`MAX_SUBSTEPS`].
+    /// Most substeps a step is split into when its bodies are small for it or one turns fast
+    /// (1 to [`SUBSTEP_LIMIT`]; 1 never splits): a step falls into the fewest that keep
+    /// gravity's fall in one, `g (dt/n)²`, within [`SAG_SHARE`](crate::SAG_SHARE) of the
+    /// typical body's thickness, and the turn of each body touching another within
+    /// [`MAX_SUBSTEP_TURN`](crate::MAX_SUBSTEP_TURN). Default [`MAX_SUBSTEPS`].
     pub max_substeps: usize,
 }
 

@@ -87,8 +87,8 @@ pub struct World {
     next_id: u64,
     /// How many substeps the step being taken is split into.
     substep_count: usize,
-    /// Scratch: the awake dynamic bodies' thicknesses, for the substeps' count.
-    thicknesses: Vec<f64>,
+    /// Scratch for the substeps' count.
+    substep_scratch: substeps::Scratch,
     /// The step's forces and kinematic drives, handed to its substeps.
     step_inputs: StepInputs,
 }
@@ -127,7 +127,7 @@ impl World {
             last_dt: 0.0,
             next_id: 0,
             substep_count: 1,
-            thicknesses: Vec::new(),
+            substep_scratch: substeps::Scratch::default(),
             step_inputs: StepInputs::default(),
         }
     }
@@ -269,7 +269,8 @@ impl World {
     /// — with the whole push in the velocities, pushes add up along chains of overlapping bodies.
     ///
     /// A step is split into equal substeps, each all of the above, when the typical body is
-    /// small for it ([`WorldSettings::max_substeps`]; see [`SAG_SHARE`](crate::SAG_SHARE)).
+    /// small for it or a body touching another turns fast ([`WorldSettings::max_substeps`]; see
+    /// [`SAG_SHARE`](crate::SAG_SHARE) and [`MAX_SUBSTEP_TURN`](crate::MAX_SUBSTEP_TURN)).
     /// Forces set for the step act in each, a kinematic target is reached a share at a time,
     /// and [`World::contacts`], [`World::problem`] and the contact forces are the last
     /// substep's. Should a substep fail, the world is left as that substep found it.
@@ -277,10 +278,11 @@ impl World {
         check_time_step(dt)?;
         let count = substeps::count(
             &self.bodies,
+            self.contact_set.contacts(),
             &self.gravity,
             dt,
             self.settings.max_substeps,
-            &mut self.thicknesses,
+            &mut self.substep_scratch,
         );
         self.substep_count = count;
         self.step_inputs.take(&self.bodies, dt);

