@@ -30,7 +30,7 @@ pub enum ContactError {
         /// Number of support-polygon vertices.
         vertices: usize,
     },
-    /// A contact quantity (centre, origin, depth) was not finite.
+    /// A contact quantity (centre, origin, depth, a body's turn) was not finite.
     #[error("contact {what} is not finite")]
     NonFinite {
         /// Which quantity.

@@ -52,14 +52,17 @@ use tatami_geometry::{ConvexPolygon, PolygonKind, Sector};
 use tatami_lcp::{Block, LinearSet, Projection, Row, RowBound, SolverBody, TwistCoupling};
 
 use crate::bearing::{bearing_depth, bearing_part};
-use crate::jacobian::{angular_jacobian, block_friction_motion, point_jacobian, twist_rate};
+use crate::jacobian::{
+    Witness, angular_jacobian, block_friction_motion, point_jacobian, twist_rate,
+};
 use crate::limit_surface::{LimitSurface, is_coupled};
 use crate::segment::SegmentProjection;
 use crate::target::normal_target;
+use crate::turns::bent;
 use crate::vertex;
 use crate::{
     Contact, ContactError, ContactProjection, ContactRows, ContactSettings, FrictionCone,
-    FrictionLimit, TwistCentre, TwistRadius,
+    FrictionLimit, Turns, TwistCentre, TwistRadius,
 };
 
 /// Rows of a face constraint.
@@ -470,7 +473,7 @@ fn bearing_of_checked(
 pub(crate) fn build(
     contact: &Contact,
     cut: Option<&Bearing>,
-    dt: f64,
+    (dt, turns): (f64, &Turns),
     settings: &ContactSettings,
     out: &mut ContactRows<'_>,
 ) {
@@ -483,7 +486,7 @@ pub(crate) fn build(
             (fresh.as_ref(), within)
         }
     };
-    build_bearing(bearing.unwrap_or(contact), dt, settings, out);
+    build_bearing(bearing.unwrap_or(contact), (dt, turns), settings, out);
     if bearing.is_some() {
         // The landing blocks (module doc): each vertex off the bearing part at its depth below
         // the part's edge, as a gap its normal row may close in this step and no more.
@@ -492,7 +495,7 @@ pub(crate) fn build(
             if depth < cut {
                 let gap = depth - vertex::landing_level(cut);
                 let at = (vertex, gap, contact.bounce_speed);
-                vertex::build_point(contact, at, None, dt, settings, out);
+                vertex::build_point(contact, at, None, (dt, turns), settings, out);
             }
         }
     }
@@ -501,7 +504,7 @@ pub(crate) fn build(
     // down to the support's deepest level in this step and no further.
     let tipping = tipping_vertices(bearing.unwrap_or(contact), out.bodies, dt, settings);
     let landing = contact.landing.iter().map(|l| (&l.point, &l.depth));
-    vertex::build_landing(contact, tipping.chain(landing), dt, settings, out);
+    vertex::build_landing(contact, tipping.chain(landing), (dt, turns), settings, out);
 }
 
 /// The vertices of `contact`'s support (with their depths) that the bodies' relative turn
@@ -530,12 +533,12 @@ fn tipping_vertices<'a>(
 /// [`build`] on a contact that bears on all of its support polygon.
 fn build_bearing(
     contact: &Contact,
-    dt: f64,
+    (dt, turns): (f64, &Turns),
     settings: &ContactSettings,
     out: &mut ContactRows<'_>,
 ) {
     if contact.support.kind() == PolygonKind::Point {
-        return vertex::build_support(contact, dt, settings, out);
+        return vertex::build_support(contact, (dt, turns), settings, out);
     }
     let frame = &contact.frame;
     // A segment takes its 5-row block (crate::segment): the tilt axis across it and the tilt
@@ -553,10 +556,17 @@ fn build_bearing(
             )
         });
     let centre = contact.support.centroid();
-    let p = frame.to_world(&centre);
-    // A face on a face keeps its material points together while they stick; an edge may roll.
+    let depth = contact.depth();
+    let witness = Witness::at(contact, &frame.to_world(&centre), depth);
     let (normal_speed, slip, weld) =
-        block_friction_motion(contact, out.bodies, &p, dt, settings.slip_threshold);
+        block_friction_motion(contact, out.bodies, &witness, dt, settings.slip_threshold);
+    let bend = turns.bend_at(contact, &witness, (depth, normal_speed), settings);
+    // A face on a face keeps its material points together while they stick (its weld bends
+    // its friction rows: `crate::turns`); an edge may roll.
+    let friction_bend = match contact.support.kind() {
+        PolygonKind::Polygon => Vector3::zeros(),
+        PolygonKind::Point | PolygonKind::Segment => bend,
+    };
     let twist_rate = twist_rate(contact, out.bodies);
     let r_bar = match settings.twist_radius {
         TwistRadius::Exact => contact.support.centroid_mean_distance(),
@@ -565,7 +575,7 @@ fn build_bearing(
     let material = &contact.material;
     let twist_friction = material.friction(twist_rate * r_bar, settings.slip_threshold);
     let target = normal_target(
-        contact.depth(),
+        depth,
         normal_speed,
         contact.bounce_speed,
         material.restitution,
@@ -580,16 +590,16 @@ fn build_bearing(
     };
     let rows = 3 + torque_axes.len();
     let start = out.rows.len();
+    let force_row = |direction: Vector3<f64>, target: f64, bend: &Vector3<f64>| {
+        (
+            point_jacobian(contact, &witness, &direction),
+            bent(target, &direction, bend, dt),
+        )
+    };
     let forces = [
-        (point_jacobian(contact, &p, &frame.normal), target.velocity),
-        (
-            point_jacobian(contact, &p, &frame.tangent1),
-            weld.dot(&frame.tangent1),
-        ),
-        (
-            point_jacobian(contact, &p, &frame.tangent2),
-            weld.dot(&frame.tangent2),
-        ),
+        force_row(frame.normal, target.velocity, &bend),
+        force_row(frame.tangent1, weld.dot(&frame.tangent1), &friction_bend),
+        force_row(frame.tangent2, weld.dot(&frame.tangent2), &friction_bend),
     ];
     let torques = torque_axes.iter().map(|axis| (angular_jacobian(axis), 0.0));
     out.rows.extend(

@@ -57,7 +57,7 @@
 
 use tatami_lcp::{Block, LinearSet, Problem, Projection, Row, RowBound, TwistCoupling};
 
-use crate::jacobian::{angular_jacobian, block_friction_motion, point_jacobian};
+use crate::jacobian::{Witness, angular_jacobian, block_friction_motion, point_jacobian};
 use crate::limit_surface::{LimitSurface, is_coupled};
 use crate::{
     Contact, ContactProjection, ContactRows, ContactSettings, FrictionCone, FrictionLimit,
@@ -201,7 +201,12 @@ pub fn build_rows(
     out: &mut ContactRows<'_>,
 ) -> bool {
     let frame = &contact.frame;
-    let centroid = frame.to_world(&contact.support.centroid());
+    // The points the model's friction rows hold, beside which this grip acts.
+    let centroid = Witness::at(
+        contact,
+        &frame.to_world(&contact.support.centroid()),
+        contact.depth(),
+    );
     let (a, b) = (&out.bodies[contact.body_a.0], &out.bodies[contact.body_b.0]);
     let inverse_mass = point_jacobian(contact, &centroid, &frame.normal).inverse_mass(a, b);
     // A NaN depth or mass is not `> 0` and adds no grip.

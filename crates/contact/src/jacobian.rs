@@ -7,47 +7,76 @@ use tatami_lcp::{Jacobian, SolverBody};
 
 use crate::Contact;
 
-/// The row measuring the velocity of A relative to B at world point `p` along `direction`.
+/// A's and B's own points where a contact touches at a point `p` of its plane: where the two
+/// overlap by `depth` the plane lies midway between their surfaces, and each body's point is
+/// on its own surface, half the depth to its side; where they do not, both are `p`. A point
+/// row holds A's point against B's: held at the plane instead, a top spinning at 200 rad/s on a
+/// tip sunk 2 mm moved the tip at 7 cm/s round the point held, and the tip wandered 5.7 cm in
+/// 10 s (5 mm from its own point).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Witness {
+    /// A's point.
+    pub a: Point3<f64>,
+    /// B's point.
+    pub b: Point3<f64>,
+}
+
+impl Witness {
+    /// The points of `contact` at plane point `p`, where it is `depth` deep.
+    #[inline]
+    pub(crate) fn at(contact: &Contact, p: &Point3<f64>, depth: f64) -> Self {
+        // The normal points from B into A: A's surface lies below the plane, B's above it.
+        let half = contact.frame.normal * (0.5 * depth.max(0.0));
+        Self {
+            a: p - half,
+            b: p + half,
+        }
+    }
+}
+
+/// The row measuring the velocity of A's point of `witness` relative to B's along `direction`.
+#[inline]
 pub(crate) fn point_jacobian(
     contact: &Contact,
-    p: &Point3<f64>,
+    witness: &Witness,
     direction: &Vector3<f64>,
 ) -> Jacobian {
     Jacobian {
         linear_a: *direction,
-        angular_a: (p - contact.centre_a).cross(direction),
+        angular_a: (witness.a - contact.centre_a).cross(direction),
         linear_b: -direction,
-        angular_b: -(p - contact.centre_b).cross(direction),
+        angular_b: -(witness.b - contact.centre_b).cross(direction),
     }
 }
 
-/// How A's material point at `p` moves relative to B's: `(normal speed, slip speed)`, the
+/// How A's point of `witness` moves relative to B's: `(normal speed, slip speed)`, the
 /// normal speed negative when closing.
 pub(crate) fn point_motion(
     contact: &Contact,
     bodies: &[SolverBody],
-    p: &Point3<f64>,
+    witness: &Witness,
 ) -> (f64, f64) {
-    let (normal_speed, slip) = normal_and_slip(contact, bodies, p);
+    let (normal_speed, slip) = normal_and_slip(contact, bodies, witness);
     (normal_speed, slip.norm())
 }
 
-/// A's velocity relative to B's at `p`, split into its speed along the normal and its slip.
+/// A's velocity relative to B's at `witness`, split into its speed along the normal and its
+/// slip.
 fn normal_and_slip(
     contact: &Contact,
     bodies: &[SolverBody],
-    p: &Point3<f64>,
+    witness: &Witness,
 ) -> (f64, Vector3<f64>) {
     let (a, b) = (&bodies[contact.body_a.0], &bodies[contact.body_b.0]);
-    let va = a.linear_velocity + a.angular_velocity.cross(&(p - contact.centre_a));
-    let vb = b.linear_velocity + b.angular_velocity.cross(&(p - contact.centre_b));
+    let va = a.linear_velocity + a.angular_velocity.cross(&(witness.a - contact.centre_a));
+    let vb = b.linear_velocity + b.angular_velocity.cross(&(witness.b - contact.centre_b));
     let v = va - vb;
     let normal = contact.frame.normal;
     let normal_speed = v.dot(&normal);
     (normal_speed, v - normal * normal_speed)
 }
 
-/// [`point_motion`] at `p` with the velocity the point's friction rows target: `(normal speed,
+/// [`point_motion`] at `witness` with the velocity the point's friction rows target: `(normal speed,
 /// slip speed, target)`. Without a `weld` (a rolling or single-point contact) the target is no
 /// slip. With the pair's [`face_weld`], where A's point kept with B's over the last step the
 /// target is the weld and the slip is how fast the points parted over that step; elsewhere the
@@ -61,11 +90,11 @@ fn normal_and_slip(
 pub(crate) fn friction_motion(
     contact: &Contact,
     bodies: &[SolverBody],
-    p: &Point3<f64>,
+    witness: &Witness,
     weld: Option<&Vector3<f64>>,
     slip_threshold: f64,
 ) -> (f64, f64, Vector3<f64>) {
-    let (normal_speed, slip) = normal_and_slip(contact, bodies, p);
+    let (normal_speed, slip) = normal_and_slip(contact, bodies, witness);
     match weld {
         Some(weld) if (slip + weld).norm() <= weld.norm() + slip_threshold => {
             (normal_speed, (slip + weld).norm(), *weld)
@@ -74,17 +103,17 @@ pub(crate) fn friction_motion(
     }
 }
 
-/// [`friction_motion`] at `p` for a contact's one friction block (the face and patch models'),
+/// [`friction_motion`] at `witness` for a contact's one friction block (the face and patch models'),
 /// with the pair's [`face_weld`].
 pub(crate) fn block_friction_motion(
     contact: &Contact,
     bodies: &[SolverBody],
-    p: &Point3<f64>,
+    witness: &Witness,
     dt: f64,
     slip_threshold: f64,
 ) -> (f64, f64, Vector3<f64>) {
     let weld = face_weld(contact, bodies, dt, slip_threshold);
-    friction_motion(contact, bodies, p, weld.as_ref(), slip_threshold)
+    friction_motion(contact, bodies, witness, weld.as_ref(), slip_threshold)
 }
 
 /// The pair's [`weld_velocity`] where it touches face to face (its support a polygon), for

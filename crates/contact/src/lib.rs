@@ -27,6 +27,11 @@
 //! points together over the step, which semi-implicit Euler's straight-line moves of the
 //! bodies' centres would otherwise part (see `jacobian::weld_velocity`).
 //!
+//! A point row holds each body's own point: where the bodies overlap, each one's surface, half
+//! the depth either side of the contact plane. Given the bodies' turns over the step
+//! ([`ContactModel::build_rows_turned`]), a point row also takes off how far those turns swing
+//! its points off straight lines ([`turns`]): a top spun on its tip stays up.
+//!
 //! Rows are written into a [`tatami_lcp::Problem`] whose blocks carry a [`ContactProjection`],
 //! so one problem holds contacts of any model and any solver of the LCP crate can solve it.
 //! [`ContactModel::build_rows`] writes them instead into a [`ContactRows`]: rows, blocks and
@@ -88,6 +93,7 @@ mod rows;
 pub mod segment;
 mod settings;
 mod target;
+pub mod turns;
 pub mod vertex;
 
 pub use bearing::{BEARING_DEPTH, BEARING_DEPTH_PER_WIDTH, bearing_depth};
@@ -104,3 +110,4 @@ pub use settings::{
     ContactSettings, DEFAULT_BIAS_RATE, DEFAULT_MAX_DEPENETRATION_SPEED, DEFAULT_MAX_VELOCITY_BIAS,
     DEFAULT_SLOP, FrictionCone, FrictionLimit, TwistCentre, TwistRadius,
 };
+pub use turns::{RESTING_SPEED, Turns};

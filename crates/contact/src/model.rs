@@ -3,7 +3,8 @@
 use tatami_lcp::Problem;
 
 use crate::{
-    Contact, ContactError, ContactProjection, ContactRows, ContactSettings, face, patch, vertex,
+    Contact, ContactError, ContactProjection, ContactRows, ContactSettings, Turns, face, patch,
+    vertex,
 };
 
 /// Which rows a contact becomes.
@@ -110,14 +111,33 @@ impl ContactModel {
         settings: &ContactSettings,
         out: &mut ContactRows<'_>,
     ) -> Result<(), ContactError> {
+        self.build_rows_turned(contact, bearing, dt, &Turns::default(), settings, out)
+    }
+
+    /// As [`ContactModel::build_rows`], for bodies that turn their shapes by `turns` over the
+    /// step: each point row's target takes off how far the turns bend its points' paths off
+    /// straight lines ([`crate::turns`]; a top spinning on its tip falls over without it). With
+    /// no turns, the same rows.
+    pub fn build_rows_turned(
+        self,
+        contact: &Contact,
+        bearing: Option<&face::Bearing>,
+        dt: f64,
+        turns: &Turns,
+        settings: &ContactSettings,
+        out: &mut ContactRows<'_>,
+    ) -> Result<(), ContactError> {
         if !(dt.is_finite() && dt > 0.0) {
             return Err(ContactError::InvalidTimeStep(dt));
         }
+        if !(turns.a.iter().chain(turns.b.iter())).all(|x| x.is_finite()) {
+            return Err(ContactError::NonFinite { what: "turn" });
+        }
         contact.validate(out.bodies.len())?;
         match self {
-            Self::Vertex => vertex::build(contact, dt, settings, out),
-            Self::Patch => patch::build(contact, dt, settings, out),
-            Self::Face => face::build(contact, bearing, dt, settings, out),
+            Self::Vertex => vertex::build(contact, (dt, turns), settings, out),
+            Self::Patch => patch::build(contact, (dt, turns), settings, out),
+            Self::Face => face::build(contact, bearing, (dt, turns), settings, out),
         }
         Ok(())
     }

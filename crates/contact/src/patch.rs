@@ -3,15 +3,17 @@
 //! bounded by the vertices' total normal impulse: `|f_t| ≤ μ Σ λᵢ`, `|τ| ≤ μ Σ dᵢ λᵢ` with
 //! `dᵢ = |vᵢ − c|`. One block of `k + 3` rows.
 
-use nalgebra::Point2;
+use nalgebra::{Point2, Vector3};
+use tatami_geometry::PolygonKind;
 use tatami_lcp::{Block, LinearSet, Projection, Row, RowBound};
 
 use crate::jacobian::{
-    angular_jacobian, block_friction_motion, point_jacobian, point_motion, twist_rate,
+    Witness, angular_jacobian, block_friction_motion, point_jacobian, point_motion, twist_rate,
 };
 use crate::target::normal_target;
+use crate::turns::bent;
 use crate::vertex;
-use crate::{Contact, ContactProjection, ContactRows, ContactSettings, FrictionCone};
+use crate::{Contact, ContactProjection, ContactRows, ContactSettings, FrictionCone, Turns};
 
 /// The projection of a patch block: rows `λ₁…λₖ` (normals), then `f1, f2, τ`.
 #[derive(Debug, Clone, PartialEq)]
@@ -80,7 +82,7 @@ impl Projection for PatchProjection {
 /// validated.
 pub(crate) fn build(
     contact: &Contact,
-    dt: f64,
+    (dt, turns): (f64, &Turns),
     settings: &ContactSettings,
     out: &mut ContactRows<'_>,
 ) {
@@ -89,8 +91,8 @@ pub(crate) fn build(
     let centre = friction_centre(contact);
     let start = out.rows.len();
     for (vertex, &depth) in vertices.iter().zip(&contact.depths) {
-        let p = frame.to_world(vertex);
-        let (normal_speed, _) = point_motion(contact, out.bodies, &p);
+        let witness = Witness::at(contact, &frame.to_world(vertex), depth);
+        let (normal_speed, _) = point_motion(contact, out.bodies, &witness);
         let target = normal_target(
             depth,
             normal_speed,
@@ -99,32 +101,39 @@ pub(crate) fn build(
             dt,
             settings,
         );
+        let bend = turns.bend_at(contact, &witness, (depth, normal_speed), settings);
         out.rows.push(Row {
-            jacobian: point_jacobian(contact, &p, &frame.normal),
-            target: target.velocity,
+            jacobian: point_jacobian(contact, &witness, &frame.normal),
+            target: bent(target.velocity, &frame.normal, &bend, dt),
             impulse: 0.0,
         });
         out.biases.push(target.bias);
     }
     out.biases.extend([0.0; 3]);
-    let c = frame.to_world(&centre);
-    // A face on a face keeps its material points together while they stick.
-    let (_, slip, weld) =
+    let c = Witness::at(contact, &frame.to_world(&centre), contact.depth());
+    // A face on a face keeps its material points together while they stick (its weld bends
+    // its friction rows: `crate::turns`); an edge may roll.
+    let (normal_speed, slip, weld) =
         block_friction_motion(contact, out.bodies, &c, dt, settings.slip_threshold);
+    let friction_bend = match contact.support.kind() {
+        PolygonKind::Polygon => Vector3::zeros(),
+        PolygonKind::Point | PolygonKind::Segment => {
+            turns.bend_at(contact, &c, (contact.depth(), normal_speed), settings)
+        }
+    };
     let distances: Vec<f64> = vertices.iter().map(|v| (v - centre).norm()).collect();
     let mean_distance = distances.iter().sum::<f64>() / distances.len() as f64;
     let twist_rate = twist_rate(contact, out.bodies);
-    for (jacobian, target) in [
+    let friction = [frame.tangent1, frame.tangent2].map(|direction| {
         (
-            point_jacobian(contact, &c, &frame.tangent1),
-            weld.dot(&frame.tangent1),
-        ),
-        (
-            point_jacobian(contact, &c, &frame.tangent2),
-            weld.dot(&frame.tangent2),
-        ),
-        (angular_jacobian(&frame.normal), 0.0),
-    ] {
+            point_jacobian(contact, &c, &direction),
+            bent(weld.dot(&direction), &direction, &friction_bend, dt),
+        )
+    });
+    for (jacobian, target) in friction
+        .into_iter()
+        .chain([(angular_jacobian(&frame.normal), 0.0)])
+    {
         out.rows.push(Row {
             jacobian,
             target,
@@ -144,7 +153,7 @@ pub(crate) fn build(
         }),
     });
     let landing = contact.landing.iter().map(|l| (&l.point, &l.depth));
-    vertex::build_landing(contact, landing, dt, settings, out);
+    vertex::build_landing(contact, landing, (dt, turns), settings, out);
 }
 
 /// The friction centre of a patch: the average of the support vertices (plane coordinates).

@@ -12,9 +12,10 @@
 use nalgebra::{Point2, Vector3};
 use tatami_lcp::{Block, Row};
 
-use crate::jacobian::{face_weld, friction_motion, point_jacobian};
+use crate::jacobian::{Witness, face_weld, friction_motion, point_jacobian};
 use crate::target::normal_target;
-use crate::{Contact, ContactProjection, ContactRows, ContactSettings, PointFriction};
+use crate::turns::bent;
+use crate::{Contact, ContactProjection, ContactRows, ContactSettings, PointFriction, Turns};
 
 /// Rows per support vertex.
 pub const ROWS_PER_VERTEX: usize = 3;
@@ -23,27 +24,27 @@ pub const ROWS_PER_VERTEX: usize = 3;
 /// each row's penetration bias to `out`. The contact must be validated.
 pub(crate) fn build(
     contact: &Contact,
-    dt: f64,
+    (dt, turns): (f64, &Turns),
     settings: &ContactSettings,
     out: &mut ContactRows<'_>,
 ) {
-    build_support(contact, dt, settings, out);
+    build_support(contact, (dt, turns), settings, out);
     let landing = contact.landing.iter().map(|l| (&l.point, &l.depth));
-    build_landing(contact, landing, dt, settings, out);
+    build_landing(contact, landing, (dt, turns), settings, out);
 }
 
 /// Appends one block per support vertex and each row's penetration bias to `out` (the face
 /// model's block for a point support too).
 pub(crate) fn build_support(
     contact: &Contact,
-    dt: f64,
+    (dt, turns): (f64, &Turns),
     settings: &ContactSettings,
     out: &mut ContactRows<'_>,
 ) {
     let weld = face_weld(contact, out.bodies, dt, settings.slip_threshold);
     for (vertex, &depth) in contact.support.vertices().iter().zip(&contact.depths) {
         let at = (vertex, depth, contact.bounce_speed);
-        build_point(contact, at, weld.as_ref(), dt, settings, out);
+        build_point(contact, at, weld.as_ref(), (dt, turns), settings, out);
     }
 }
 
@@ -54,14 +55,14 @@ pub(crate) fn build_support(
 pub(crate) fn build_landing<'a>(
     contact: &Contact,
     points: impl Iterator<Item = (&'a Point2<f64>, &'a f64)>,
-    dt: f64,
+    (dt, turns): (f64, &Turns),
     settings: &ContactSettings,
     out: &mut ContactRows<'_>,
 ) {
     let deepest = landing_level(contact.depth());
     for (point, &depth) in points {
         let gap = (depth - deepest).min(0.0);
-        build_point(contact, (point, gap, 0.0), None, dt, settings, out);
+        build_point(contact, (point, gap, 0.0), None, (dt, turns), settings, out);
     }
 }
 
@@ -80,19 +81,27 @@ pub(crate) fn landing_level(level: f64) -> f64 {
 /// ([`Contact::bounce_speed`]: the contact's for a point of its support, 0 for the landing
 /// blocks, which catch a turn and bounce on their own approach alone). A point of a
 /// face resting on a face, given the pair's `weld`, has its friction rows keep the two bodies'
-/// material points together over the step while they stick ([`friction_motion`]).
+/// material points together over the step while they stick ([`friction_motion`]); without
+/// one, they and the normal row take off the points' bend over the step, the bodies turning
+/// by `turns` ([`crate::turns`]).
 pub(crate) fn build_point(
     contact: &Contact,
     (vertex, depth, bounce_speed): (&Point2<f64>, f64, f64),
     weld: Option<&Vector3<f64>>,
-    dt: f64,
+    (dt, turns): (f64, &Turns),
     settings: &ContactSettings,
     out: &mut ContactRows<'_>,
 ) {
     let frame = &contact.frame;
-    let p = frame.to_world(vertex);
-    let (normal_speed, slip, weld) =
-        friction_motion(contact, out.bodies, &p, weld, settings.slip_threshold);
+    let witness = Witness::at(contact, &frame.to_world(vertex), depth);
+    let (normal_speed, slip, weld_target) =
+        friction_motion(contact, out.bodies, &witness, weld, settings.slip_threshold);
+    let bend = turns.bend_at(contact, &witness, (depth, normal_speed), settings);
+    let friction_bend = if weld.is_some() {
+        Vector3::zeros()
+    } else {
+        bend
+    };
     let start = out.rows.len();
     let target = normal_target(
         depth,
@@ -102,14 +111,22 @@ pub(crate) fn build_point(
         dt,
         settings,
     );
-    for (direction, target) in [
-        (frame.normal, target.velocity),
-        (frame.tangent1, weld.dot(&frame.tangent1)),
-        (frame.tangent2, weld.dot(&frame.tangent2)),
+    for (direction, target, bend) in [
+        (frame.normal, target.velocity, &bend),
+        (
+            frame.tangent1,
+            weld_target.dot(&frame.tangent1),
+            &friction_bend,
+        ),
+        (
+            frame.tangent2,
+            weld_target.dot(&frame.tangent2),
+            &friction_bend,
+        ),
     ] {
         out.rows.push(Row {
-            jacobian: point_jacobian(contact, &p, &direction),
-            target,
+            jacobian: point_jacobian(contact, &witness, &direction),
+            target: bent(target, &direction, bend, dt),
             impulse: 0.0,
         });
     }

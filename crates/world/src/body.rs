@@ -525,6 +525,35 @@ impl Body {
         self.angular_velocity
     }
 
+    /// The angular velocity that swings the points a contact holds on the body (rad/s, world
+    /// axes), for the rows' bends ([`tatami_contact::Turns`]): a box's or a hull's, whose
+    /// contacts sit on its vertices, edges and faces; none of a ball's or a cylinder's, whose
+    /// contact on its curved side or rim runs over the surface as it rolls or wobbles, so
+    /// that the point touching is not the material point that swings (bent by its turn, a
+    /// cylinder wobbling on its rim sank 3 mm into the floor).
+    pub(crate) fn material_spin(&self) -> Vector3<f64> {
+        match self.shape() {
+            Shape::Box { .. } | Shape::Convex { .. } => self.angular_velocity,
+            Shape::Sphere { .. } | Shape::Cylinder { .. } => Vector3::zeros(),
+        }
+    }
+
+    /// The part of the angular velocity that turns the body's shape (rad/s, world axes): all
+    /// of it but a ball's, which turns into itself, and a cylinder's about its own axis. A
+    /// rolling ball's or wheel's contact stays under its centre while its material points
+    /// swing round, so the substeps ([`crate::substeps`]) do not count that turn.
+    pub(crate) fn shape_spin(&self) -> Vector3<f64> {
+        let spin = self.angular_velocity;
+        match self.shape() {
+            Shape::Sphere { .. } => Vector3::zeros(),
+            Shape::Cylinder { .. } => {
+                let axis = self.rotation * Vector3::z();
+                spin - axis * spin.dot(&axis)
+            }
+            Shape::Box { .. } | Shape::Convex { .. } => spin,
+        }
+    }
+
     /// Velocity of the body's point at `p` (world).
     pub(crate) fn velocity_at(&self, p: &Point3<f64>) -> Vector3<f64> {
         self.linear_velocity + self.angular_velocity.cross(&(p - self.centre))

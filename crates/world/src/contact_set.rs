@@ -1130,7 +1130,16 @@ mod tests {
             .contact_set
             .warm_start(ContactModel::Vertex, &mut world.problem, &weight);
         let started: Vec<f64> = world.problem().rows.iter().map(|r| r.impulse).collect();
-        assert_eq!(started, solved);
+        // Row by row, to the rounding the shock pass leaves on the friction rows of a cube at
+        // rest (1e-14 N s against normal impulses of 40.8): a row started from zero or from an
+        // estimate would be off by the order of the normal impulses.
+        assert_eq!(started.len(), solved.len());
+        for (start, solve) in started.iter().zip(&solved) {
+            assert!(
+                (start - solve).abs() <= 1e-12 * 40.0,
+                "{started:?} against {solved:?}"
+            );
+        }
         assert!(solved.iter().step_by(3).all(|&normal| normal > 0.0));
         world.step(dt).expect("a step");
         switch(&mut world, ContactModel::Face);

@@ -16,7 +16,8 @@
 //! Without the helpers kept awake, a helper woken at the rows took longer to start than a
 //! pyramid's rows take.
 
-use tatami_contact::{ContactError, ContactModel, ContactProjection, ContactRows, grip};
+use nalgebra::Vector3;
+use tatami_contact::{ContactError, ContactModel, ContactProjection, ContactRows, Turns, grip};
 use tatami_lcp::{Block, Row, SolverBody};
 
 use crate::contact_set::{ContactSet, PairRows};
@@ -54,6 +55,8 @@ pub(crate) fn worth_waking(pairs: usize) -> bool {
 pub(crate) struct RowInputs<'a> {
     /// The world's bodies (which are asleep, their shapes for a landing's bounce).
     pub bodies: &'a [Body],
+    /// Each body's turn over the step ([`turn_of`]).
+    pub turns: &'a [Vector3<f64>],
     /// Each pair's grip, if pressed.
     pub presses: &'a Presses,
     /// The contact model.
@@ -106,6 +109,7 @@ impl RunRecord {
     ) {
         let &RowInputs {
             bodies,
+            turns,
             presses,
             model,
             settings,
@@ -126,8 +130,13 @@ impl RunRecord {
                 ContactModel::Vertex | ContactModel::Patch => (pair.contact(), Ok(None)),
             };
             let first_row = out.rows.len();
-            let built =
-                bearing.and_then(|bearing| model.build_rows(contact, bearing, dt, settings, out));
+            let turns = Turns {
+                a: turns[contact.body_a.0],
+                b: turns[contact.body_b.0],
+            };
+            let built = bearing.and_then(|bearing| {
+                model.build_rows_turned(contact, bearing, dt, &turns, settings, out)
+            });
             match built {
                 Err(source) => self.failed = Some((index, source)),
                 Ok(()) => {
@@ -230,6 +239,18 @@ impl RowRuns {
     }
 }
 
+/// How far `body` turns the points its contacts hold over a step of `dt` (rad; see
+/// [`Turns`]): zero under a nanoradian, which bends no point of a body under a kilometre by
+/// more than a femtometre, so that a body at rest costs its rows nothing for it.
+pub(crate) fn turn_of(body: &Body, dt: f64) -> Vector3<f64> {
+    let turn = body.material_spin() * dt;
+    if turn.norm_squared() < 1e-18 {
+        Vector3::zeros()
+    } else {
+        turn
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use nalgebra::{Point2, Point3, UnitQuaternion, Vector3};
@@ -298,8 +319,14 @@ mod tests {
         let (world, solver) = bodies();
         let presses = Presses::default();
         let settings = ContactSettings::default();
+        let turns: Vec<_> = world
+            .bodies()
+            .iter()
+            .map(|b| turn_of(b, 1.0 / 60.0))
+            .collect();
         let inputs = RowInputs {
             bodies: world.bodies(),
+            turns: &turns,
             presses: &presses,
             model: ContactModel::Face,
             settings: &settings,

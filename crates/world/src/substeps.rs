@@ -48,7 +48,7 @@
 use nalgebra::{Point3, UnitQuaternion, Vector3};
 use tatami_contact::Contact;
 
-use crate::{Body, Shape};
+use crate::Body;
 
 /// Most a step's gravity fall `g h²` may be of the typical body's thickness before the step is
 /// split (see the module doc): between the 30 cm cubes' 0.009, which settle in a bin at 60 Hz,
@@ -56,11 +56,12 @@ use crate::{Body, Shape};
 pub const SAG_SHARE: f64 = 0.01;
 
 /// Most a dynamic body touching another may turn in a substep (rad; see the module doc): the
-/// spinning top of the module doc, at 60 Hz in seven substeps, nods within 3.4° of the
-/// fixed-tip top's lowest point and precesses within 4.2% over 2 s (in steps of 1/4000 s, 0.3°
-/// and 3%). Half a radian a step at 60 Hz is 30 rad/s: of the 1000-body piles' bodies,
-/// tumbling as they land, one reached it in one step (at a quarter radian, 75 steps), and the
-/// pyramids' and towers' none.
+/// spinning top of the module doc, at 60 Hz in seven substeps, nodded within 3.4° of the
+/// fixed-tip top's lowest point and precessed within 4.2% over 2 s, but sank to 44° within
+/// 10 s; with the rows' bends over each substep ([`tatami_contact::turns`]) it keeps within
+/// 1° and 1% over 10 s. Half a radian a step at 60 Hz is 30 rad/s: of the 1000-body piles'
+/// bodies, tumbling as they land, one reached it in one step (at a quarter radian, 75 steps),
+/// and the pyramids' and towers' none.
 pub const MAX_SUBSTEP_TURN: f64 = 0.5;
 
 /// Substeps of a step of `dt` for `bodies` under `gravity` touching as `contacts` pair them,
@@ -141,23 +142,9 @@ fn for_the_turns<'a>(
         .iter()
         .zip(touching.iter())
         .filter(|(body, touches)| **touches && body.is_dynamic() && !body.asleep)
-        .map(|(body, _)| shape_turn_rate(body))
+        .map(|(body, _)| body.shape_spin().norm())
         .fold(0.0, f64::max);
     (fastest * dt / MAX_SUBSTEP_TURN).ceil().max(1.0)
-}
-
-/// How fast `body` turns its shape (rad/s): its angular speed, less what turns a round shape
-/// into itself — all of a ball's, and a cylinder's about its axis.
-fn shape_turn_rate(body: &Body) -> f64 {
-    let spin = body.angular_velocity();
-    match body.shape() {
-        Shape::Sphere { .. } => 0.0,
-        Shape::Cylinder { .. } => {
-            let axis = body.rotation() * Vector3::z();
-            (spin - axis * spin.dot(&axis)).norm()
-        }
-        Shape::Box { .. } | Shape::Convex { .. } => spin.norm(),
-    }
 }
 
 /// What a step's caller set for the whole step, handed to each of its substeps: the applied

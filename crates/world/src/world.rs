@@ -18,7 +18,7 @@ use crate::parallel;
 use crate::parry_bridge::Collider;
 use crate::press::Presses;
 use crate::rewind::{RewindWorkspace, StepMotion};
-use crate::rows::{RowInputs, RowRuns};
+use crate::rows::{self, RowInputs, RowRuns};
 use crate::sleep::{self, Islands};
 use crate::substeps::{self, StepInputs};
 use crate::support::Outline;
@@ -89,6 +89,8 @@ pub struct World {
     substep_count: usize,
     /// Scratch for the substeps' count.
     substep_scratch: substeps::Scratch,
+    /// Scratch: each body's turn over the step, for the contact rows.
+    turns: Vec<Vector3<f64>>,
     /// The step's forces and kinematic drives, handed to its substeps.
     step_inputs: StepInputs,
 }
@@ -128,6 +130,7 @@ impl World {
             next_id: 0,
             substep_count: 1,
             substep_scratch: substeps::Scratch::default(),
+            turns: Vec::new(),
             step_inputs: StepInputs::default(),
         }
     }
@@ -451,8 +454,11 @@ impl World {
         self.biases.clear();
         let contact_settings = self.settings.contact;
         (self.presses).find(&self.bodies, self.contact_set.contacts(), &contact_settings);
+        self.turns.clear();
+        (self.turns).extend(self.bodies.iter().map(|body| rows::turn_of(body, dt)));
         let inputs = RowInputs {
             bodies: &self.bodies,
+            turns: &self.turns,
             presses: &self.presses,
             model: self.settings.model,
             settings: &contact_settings,

@@ -20,7 +20,7 @@ pub const HEADER: [&str; 6] = [
     "agrees",
 ];
 
-/// A cube that turned by more than this (rad) has tipped.
+/// A cube that turned by more than this (rad) at some point of its run has tipped.
 const TIPPED: f64 = 0.3;
 
 struct Point {
@@ -62,8 +62,14 @@ pub fn run(
         for &overhang in overhangs {
             let mut moved = scene.clone();
             moved.bodies[1].position.x = edge + overhang;
-            let world = scenes::run_paper(&moved, model, |_, _| {})?;
-            let turned = (world.bodies()[1].rotation() * cube.rotation.inverse()).angle();
+            // The largest turn over the run: a cube that tips falls off the ledge tumbling, and
+            // its turn at the end is wherever the tumble leaves it (one at 0.5 m ended at 0.298
+            // rad, under the mark, though it had gone over).
+            let mut turned = 0.0_f64;
+            scenes::run_paper(&moved, model, |_, world| {
+                let turn = world.bodies()[1].rotation() * cube.rotation.inverse();
+                turned = turned.max(turn.angle());
+            })?;
             points.push(Point {
                 model,
                 overhang,
@@ -88,13 +94,13 @@ pub fn run(
     table.finish()?;
     let seconds = scene.steps as f64 * scene.dt;
     Chart {
-        title: "Cube over a ledge: rotation after the run vs overhang",
+        title: "Cube over a ledge: largest rotation over the run vs overhang",
         x: Axis {
             label: "centre of mass beyond the edge (m)",
             log: false,
         },
         y: Axis {
-            label: "rotation after the run (rad)",
+            label: "largest rotation over the run (rad)",
             log: false,
         },
         series: ContactModel::ALL
@@ -119,7 +125,7 @@ pub fn run(
         "**Paper.** Not measured; the ZMP clamp exists so that a face contact tips exactly when \
          the centre of mass leaves the support polygon.\n\n\
          **Tatami.** `scenes/{}` with the cube's centre moved to each overhang, {seconds} s per \
-         run; *tipped* means turned by more than {TIPPED} rad. {agreeing} of {} runs agree \
+         run; *tipped* means turned by more than {TIPPED} rad at some point of the run. {agreeing} of {} runs agree \
          with statics.\n\n| overhang (m) |",
         scenes::LEDGE.name,
         points.len()
