@@ -31,6 +31,7 @@ mod contact_set;
 mod control;
 pub mod dropped;
 mod error;
+pub mod heavy_top;
 mod impact;
 mod load_estimate;
 mod parallel;

@@ -20,6 +20,7 @@ mod point_toppling;
 mod report;
 mod scenes;
 mod spin_down;
+mod spinning_top;
 mod stack_timing;
 mod table;
 
@@ -159,6 +160,7 @@ pub fn run(args: &Args) -> Result<(), String> {
         Box::new(|| pgs_error::run(&plan.iterations, out, &progress)),
         Box::new(|| friction_isotropy::run(&plan.slide_angles, out, &progress)),
         Box::new(|| free_rotation::run(out, &progress)),
+        Box::new(|| spinning_top::run(out, &progress)),
         Box::new(|| holding::run(plan.quick, out, &progress)),
         Box::new(|| energy::run(plan.energy_scenes, out, &progress)),
     ];

@@ -40,6 +40,8 @@ pub const DIAGONAL_SLIDE: SceneFile = scene_file!("diagonal_slide.json");
 pub const TUMBLING_BOX: SceneFile = scene_file!("tumbling_box.json");
 /// A 0.2×1×2 m plate spun about its intermediate axis, 1% off (free rotation).
 pub const INTERMEDIATE_AXIS: SceneFile = scene_file!("intermediate_axis.json");
+/// A cone spun on its tip (the spinning-top experiment).
+pub const SPINNING_TOP: SceneFile = scene_file!("spinning_top.json");
 /// Two unit cubes, the upper 0.2 m off centre (holding).
 pub const OFFSET_PAIR: SceneFile = scene_file!("offset_pair.json");
 /// Six unit cubes leaning 0.1 m per level (holding).
