@@ -126,8 +126,8 @@ fn top(model: ContactModel, hz: f64) -> (Nodding, Nodding) {
 /// ([`tatami_contact::Turns`]). In one step each it fell over within a second (past 100° at
 /// 60 Hz); in substeps alone it nodded to 29° within 2 s and to 44° within 10 s, its tip
 /// wandering 11 cm. (Its nodding dies away over the 10 s, to ±0.1° about 23.6° at 60 Hz, where
-/// the fixed-tip top's goes on: its tip's contact takes the nodding's energy; the bounds hold
-/// its lowest point, its precession and its tip.)
+/// the fixed-tip top's goes on: damping of the step's making, less at shorter steps; the
+/// bounds hold its lowest point, its precession and its tip.)
 #[test]
 fn a_top_spun_on_its_tip_precesses() {
     for model in ContactModel::ALL {
