@@ -58,7 +58,7 @@ use crate::jacobian::{
 use crate::limit_surface::{LimitSurface, is_coupled};
 use crate::segment::SegmentProjection;
 use crate::target::normal_target;
-use crate::turns::bent;
+use crate::turns::{bent, friction_bend};
 use crate::vertex;
 use crate::{
     Contact, ContactError, ContactProjection, ContactRows, ContactSettings, FrictionCone,
@@ -561,12 +561,9 @@ fn build_bearing(
     let (normal_speed, slip, weld) =
         block_friction_motion(contact, out.bodies, &witness, dt, settings.slip_threshold);
     let bend = turns.bend_at(contact, &witness, (depth, normal_speed), settings);
-    // A face on a face keeps its material points together while they stick (its weld bends
-    // its friction rows: `crate::turns`); an edge may roll.
-    let friction_bend = match contact.support.kind() {
-        PolygonKind::Polygon => Vector3::zeros(),
-        PolygonKind::Point | PolygonKind::Segment => bend,
-    };
+    // A face on a face keeps its material points together while they stick (its weld);
+    // an edge may roll.
+    let friction_bend = friction_bend(contact.support.kind() == PolygonKind::Polygon, bend);
     let twist_rate = twist_rate(contact, out.bodies);
     let r_bar = match settings.twist_radius {
         TwistRadius::Exact => contact.support.centroid_mean_distance(),

@@ -202,13 +202,13 @@ pub fn build_rows(
 ) -> bool {
     let frame = &contact.frame;
     // The points the model's friction rows hold, beside which this grip acts.
-    let centroid = Witness::at(
+    let witness = Witness::at(
         contact,
         &frame.to_world(&contact.support.centroid()),
         contact.depth(),
     );
     let (a, b) = (&out.bodies[contact.body_a.0], &out.bodies[contact.body_b.0]);
-    let inverse_mass = point_jacobian(contact, &centroid, &frame.normal).inverse_mass(a, b);
+    let inverse_mass = point_jacobian(contact, &witness, &frame.normal).inverse_mass(a, b);
     // A NaN depth or mass is not `> 0` and adds no grip.
     if !(excess > 0.0 && inverse_mass > 0.0 && dt > 0.0) {
         return false;
@@ -218,17 +218,17 @@ pub fn build_rows(
     // bodies' points together over the step while they turn together (a hand turning what
     // it holds), else no slip.
     let (_, slip, weld) =
-        block_friction_motion(contact, out.bodies, &centroid, dt, settings.slip_threshold);
+        block_friction_motion(contact, out.bodies, &witness, dt, settings.slip_threshold);
     let mu = contact.material.friction(slip, settings.slip_threshold);
     let twist_radius = contact.support.centroid_mean_distance();
     let start = out.rows.len();
     let mut directions = vec![
         (
-            point_jacobian(contact, &centroid, &frame.tangent1),
+            point_jacobian(contact, &witness, &frame.tangent1),
             weld.dot(&frame.tangent1),
         ),
         (
-            point_jacobian(contact, &centroid, &frame.tangent2),
+            point_jacobian(contact, &witness, &frame.tangent2),
             weld.dot(&frame.tangent2),
         ),
     ];

@@ -76,11 +76,11 @@ fn normal_and_slip(
     (normal_speed, v - normal * normal_speed)
 }
 
-/// [`point_motion`] at `witness` with the velocity the point's friction rows target: `(normal speed,
-/// slip speed, target)`. Without a `weld` (a rolling or single-point contact) the target is no
-/// slip. With the pair's [`face_weld`], where A's point kept with B's over the last step the
-/// target is the weld and the slip is how fast the points parted over that step; elsewhere the
-/// target is no slip, the friction opposing the slip itself.
+/// [`point_motion`] at `witness` with the velocity the point's friction rows target: `(normal
+/// speed, slip speed, target)`. Without a `weld` (a rolling or single-point contact) the target
+/// is no slip. With the pair's [`face_weld`], where A's point kept with B's over the last step
+/// the target is the weld and the slip is how fast the points parted over that step; elsewhere
+/// the target is no slip, the friction opposing the slip itself.
 ///
 /// At the step's start a welded pair's points part at `−weld` (seen from where the bodies now
 /// are, each point has swung on round its centre), so `slip + weld` is how fast they parted over
@@ -103,8 +103,8 @@ pub(crate) fn friction_motion(
     }
 }
 
-/// [`friction_motion`] at `witness` for a contact's one friction block (the face and patch models'),
-/// with the pair's [`face_weld`].
+/// [`friction_motion`] at `witness` for a contact's one friction block (the face and patch
+/// models'), with the pair's [`face_weld`].
 pub(crate) fn block_friction_motion(
     contact: &Contact,
     bodies: &[SolverBody],

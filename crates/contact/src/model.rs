@@ -145,7 +145,8 @@ impl ContactModel {
     /// };
     /// let (dt, settings) = (0.01, ContactSettings::default());
     /// let target = |turns: &Turns| -> Result<f64, Box<dyn std::error::Error>> {
-    ///     let mut problem = Problem { bodies: vec![body, SolverBody::fixed()], ..Default::default() };
+    ///     let bodies = vec![body, SolverBody::fixed()];
+    ///     let mut problem = Problem { bodies, ..Default::default() };
     ///     let mut biases = Vec::new();
     ///     let mut out = ContactRows::of(&mut problem, &mut biases);
     ///     ContactModel::Face.build_rows_turned(&contact, None, dt, turns, &settings, &mut out)?;

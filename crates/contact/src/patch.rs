@@ -3,7 +3,7 @@
 //! bounded by the vertices' total normal impulse: `|f_t| ≤ μ Σ λᵢ`, `|τ| ≤ μ Σ dᵢ λᵢ` with
 //! `dᵢ = |vᵢ − c|`. One block of `k + 3` rows.
 
-use nalgebra::{Point2, Vector3};
+use nalgebra::Point2;
 use tatami_geometry::PolygonKind;
 use tatami_lcp::{Block, LinearSet, Projection, Row, RowBound};
 
@@ -11,7 +11,7 @@ use crate::jacobian::{
     Witness, angular_jacobian, block_friction_motion, point_jacobian, point_motion, twist_rate,
 };
 use crate::target::normal_target;
-use crate::turns::bent;
+use crate::turns::{bent, friction_bend};
 use crate::vertex;
 use crate::{Contact, ContactProjection, ContactRows, ContactSettings, FrictionCone, Turns};
 
@@ -115,12 +115,10 @@ pub(crate) fn build(
     // its friction rows: `crate::turns`); an edge may roll.
     let (normal_speed, slip, weld) =
         block_friction_motion(contact, out.bodies, &c, dt, settings.slip_threshold);
-    let friction_bend = match contact.support.kind() {
-        PolygonKind::Polygon => Vector3::zeros(),
-        PolygonKind::Point | PolygonKind::Segment => {
-            turns.bend_at(contact, &c, (contact.depth(), normal_speed), settings)
-        }
-    };
+    let friction_bend = friction_bend(
+        contact.support.kind() == PolygonKind::Polygon,
+        turns.bend_at(contact, &c, (contact.depth(), normal_speed), settings),
+    );
     let distances: Vec<f64> = vertices.iter().map(|v| (v - centre).norm()).collect();
     let mean_distance = distances.iter().sum::<f64>() / distances.len() as f64;
     let twist_rate = twist_rate(contact, out.bodies);

@@ -35,7 +35,8 @@ use crate::{Contact, ContactSettings};
 pub const RESTING_SPEED: f64 = 0.1;
 
 /// How far each body of a contact turns its shape over the step (rad, world axes: the axis
-/// times the angle), for [`ContactModel::build_rows_turned`](crate::ContactModel::build_rows_turned).
+/// times the angle), for
+/// [`ContactModel::build_rows_turned`](crate::ContactModel::build_rows_turned).
 /// Zero for a fixed body and a ball; a caller may pass zero for a body at rest, whose turn
 /// bends nothing, and its rows then cost no more than without turns.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -88,6 +89,14 @@ impl Turns {
     }
 }
 
+/// The bend a contact's friction rows take at a point whose normal row takes `bend`: none
+/// where a weld holds them (a face on a face, `welded`), whose target already keeps two faces
+/// turning together together over the step ([`crate::jacobian`]'s weld), else the point's.
+#[inline]
+pub(crate) fn friction_bend(welded: bool, bend: Vector3<f64>) -> Vector3<f64> {
+    if welded { Vector3::zeros() } else { bend }
+}
+
 /// A point row's `target` along `direction` with the row's points' `bend` over a step of `dt`
 /// taken off (see the module doc).
 #[inline]
@@ -99,10 +108,35 @@ pub(crate) fn bent(target: f64, direction: &Vector3<f64>, bend: &Vector3<f64>, d
 mod tests {
     use nalgebra::{Point2, Point3};
     use tatami_geometry::ConvexPolygon;
-    use tatami_lcp::BodyId;
+    use tatami_lcp::{BodyId, Problem, SolverBody};
 
     use super::*;
-    use crate::{ContactFrame, Material};
+    use crate::{ContactError, ContactFrame, ContactModel, ContactRows, Material};
+
+    /// A turn that is not finite is refused by name under every model, with nothing built.
+    #[test]
+    fn a_turn_that_is_not_finite_is_an_error() {
+        let contact = contact();
+        for model in ContactModel::ALL {
+            for bad in [f64::NAN, f64::INFINITY] {
+                let turns = Turns {
+                    a: Vector3::zeros(),
+                    b: Vector3::new(0.0, bad, 0.0),
+                };
+                let mut problem = Problem {
+                    bodies: vec![SolverBody::fixed(); 2],
+                    ..Default::default()
+                };
+                let mut biases = Vec::new();
+                let mut out = ContactRows::of(&mut problem, &mut biases);
+                let settings = ContactSettings::default();
+                let built =
+                    model.build_rows_turned(&contact, None, 0.01, &turns, &settings, &mut out);
+                assert_eq!(built, Err(ContactError::NonFinite { what: "turn" }));
+                assert!(problem.rows.is_empty());
+            }
+        }
+    }
 
     /// A point contact off the world's axes between bodies whose centres lie off its normal.
     fn contact() -> Contact {

@@ -14,7 +14,7 @@ use tatami_lcp::{Block, Row};
 
 use crate::jacobian::{Witness, face_weld, friction_motion, point_jacobian};
 use crate::target::normal_target;
-use crate::turns::bent;
+use crate::turns::{bent, friction_bend};
 use crate::{Contact, ContactProjection, ContactRows, ContactSettings, PointFriction, Turns};
 
 /// Rows per support vertex.
@@ -97,11 +97,7 @@ pub(crate) fn build_point(
     let (normal_speed, slip, weld_target) =
         friction_motion(contact, out.bodies, &witness, weld, settings.slip_threshold);
     let bend = turns.bend_at(contact, &witness, (depth, normal_speed), settings);
-    let friction_bend = if weld.is_some() {
-        Vector3::zeros()
-    } else {
-        bend
-    };
+    let friction_bend = friction_bend(weld.is_some(), bend);
     let start = out.rows.len();
     let target = normal_target(
         depth,

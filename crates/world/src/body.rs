@@ -111,7 +111,8 @@ impl BodyDesc {
     /// neither gravity nor contacts, and pushes dynamic bodies as if its mass were infinite. A
     /// step moves it by `velocity · dt` (to its target) exactly; when the step is split in
     /// substeps, a change of its velocity is spread over them, so that within the step it
-    /// moves as if it changed speed steadily ([`WorldSettings::max_substeps`](crate::WorldSettings::max_substeps)).
+    /// moves as if it changed speed steadily
+    /// ([`WorldSettings::max_substeps`](crate::WorldSettings::max_substeps)).
     ///
     /// ```
     /// use tatami_world::{BodyDesc, Shape};

@@ -41,9 +41,11 @@
 //! it along the free-rotation path, on which its own angular velocity turns about its angular
 //! momentum; over a large turn the two part. A top of 1 kg (a cone 20 cm tall, 20 cm across)
 //! spun at 200 rad/s and let go on its tip tilted 20° should nod between 20° and 25.8° and
-//! precess at 2.79 rad/s (a fixed-tip top, integrated apart); in one step each at 100 Hz (2 rad
-//! a step) its tip sank 0.3 mm a step and it fell over within a second; at 60 Hz too. Only a body's turn that moves its shape counts: none for a
-//! ball, and none about a cylinder's axis, so a rolling ball or wheel takes one step.
+//! precess at 2.79 rad/s over its first 2 s (a fixed-tip top, integrated apart,
+//! [`crate::heavy_top`]); in one step each at 100 Hz (2 rad a step) its tip sank 0.3 mm a step
+//! and it fell over within a second; at 60 Hz too. Only a body's turn that moves its shape
+//! counts: none for a ball, and none about a cylinder's axis, so a rolling ball or wheel takes
+//! one step.
 
 use nalgebra::{Point3, UnitQuaternion, Vector3};
 use tatami_contact::Contact;

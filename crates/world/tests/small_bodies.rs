@@ -68,9 +68,9 @@ fn bin(count: usize) -> World {
 /// contact is deeper than a millimetre (a tenth of the thickest body: its pair's slop at
 /// most), no body's centre is under the floor's top by more than the settings' slop (a body
 /// through it would be), none is outside the walls, and all are at rest (under 1 cm/s: the
-/// bin is still settling by micrometres) but for balls and cylinders that roll (under 5 cm/s). With the settings' 5 mm margin, wider than many of
-/// the bodies, the bin went on jostling at 0.13 m/s with contacts 8 mm deep, a third of the
-/// bodies' centres under the floor's top.
+/// bin is still settling by micrometres) but for balls and cylinders that roll (under 5 cm/s).
+/// With the settings' 5 mm margin, wider than many of the bodies, the bin went on jostling at
+/// 0.13 m/s with contacts 8 mm deep, a third of the bodies' centres under the floor's top.
 #[test]
 fn small_bodies_dropped_into_a_bin_come_to_rest_within_the_slop() {
     let slop = ContactSettings::default().slop;

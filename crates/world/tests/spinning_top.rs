@@ -50,7 +50,9 @@ fn fixed_tip(l: f64, i1: f64, i3: f64) -> Nodding {
         axial_moment: i3,
         spin: SPIN,
     };
-    let trace = top.trace(TILT, 1e-3, (SECONDS * 1e3).round() as usize, 100);
+    let trace = top
+        .trace(TILT, 1e-3, (SECONDS * 1e3).round() as usize, 100)
+        .unwrap();
     let tilts = || trace.iter().map(|s| s.tilt);
     Nodding {
         least_tilt: tilts().fold(f64::INFINITY, f64::min),

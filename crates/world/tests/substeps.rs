@@ -48,10 +48,10 @@ fn a_bin_of_small_cubes_settles_in_substeps() {
 
 /// A step split in substeps keeps what was set for the whole step: a body pushed sideways by a
 /// constant force for a step of 1/60 s (split in eight for these 5 mm bodies) moves as the
-/// force says, `F dt / m` in speed (the force acts in every substep), and a kinematic body sent to a target ends the
-/// step there, having moved a share of the way in each substep (from rest, faster and faster):
-/// a cube in its path, which it reaches on the way while turning, is pushed on rather than
-/// passed through.
+/// force says, `F dt / m` in speed (the force acts in every substep), and a kinematic body sent
+/// to a target ends the step there, having moved a share of the way in each substep (from rest,
+/// faster and faster): a cube in its path, which it reaches on the way while turning, is pushed
+/// on rather than passed through.
 #[test]
 fn forces_and_targets_last_the_whole_step() {
     let mut world = World::builder()

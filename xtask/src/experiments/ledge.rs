@@ -125,8 +125,8 @@ pub fn run(
         "**Paper.** Not measured; the ZMP clamp exists so that a face contact tips exactly when \
          the centre of mass leaves the support polygon.\n\n\
          **Tatami.** `scenes/{}` with the cube's centre moved to each overhang, {seconds} s per \
-         run; *tipped* means turned by more than {TIPPED} rad at some point of the run. {agreeing} of {} runs agree \
-         with statics.\n\n| overhang (m) |",
+         run; *tipped* means turned by more than {TIPPED} rad at some point of the run. \
+         {agreeing} of {} runs agree with statics.\n\n| overhang (m) |",
         scenes::LEDGE.name,
         points.len()
     );

@@ -68,7 +68,8 @@ fn trace(model: ContactModel) -> Result<(f64, Vec<Sample>, Vec<TopState>), Strin
         spin: body.angular_velocity().dot(&axis),
     };
     let tilt = axis.z.acos();
-    let reference = top.trace(tilt, scene.dt, scene.steps, SUBSTEPS);
+    let reference = (top.trace(tilt, scene.dt, scene.steps, SUBSTEPS))
+        .map_err(|e| format!("scenes/{}: {e}", scenes::SPINNING_TOP.name))?;
     let heading_of = |axis: &Vector3<f64>| axis.y.atan2(axis.x);
     let (mut heading, mut last) = (0.0, heading_of(&axis));
     let mut samples = vec![Sample {
@@ -161,9 +162,8 @@ pub fn run(out: &std::path::Path, progress: &Progress) -> Result<Outcome, String
 /// Per model: the greatest tilt (°) less the reference's, the mean precession's ratio to the
 /// reference's less 1, and how far the tip went (m).
 fn measures(samples: &[Sample], reference: &[TopState]) -> (f64, f64, f64) {
-    let greatest = |tilts: &mut dyn Iterator<Item = f64>| tilts.fold(0.0, f64::max);
-    let over = greatest(&mut samples.iter().map(|s| s.tilt))
-        - greatest(&mut reference.iter().map(|r| r.tilt));
+    let greatest = samples.iter().map(|s| s.tilt).fold(0.0, f64::max);
+    let over = greatest - reference.iter().map(|r| r.tilt).fold(0.0, f64::max);
     let (last, reference_last) = (samples.last(), reference.last());
     let precession = match (last, reference_last) {
         (Some(s), Some(r)) if r.heading != 0.0 => s.heading / r.heading - 1.0,
