@@ -153,7 +153,13 @@ impl SweepAndPrune {
                 }
             }
         }
-        order_pairs(&self.found, &mut self.firsts, boxes.len(), pairs);
+        order_by_pair(
+            &self.found,
+            |&pair| pair,
+            &mut self.firsts,
+            boxes.len(),
+            pairs,
+        );
     }
 
     /// Strips across `across` [`STRIP_WIDTH`] median boxes wide, at most one per
@@ -191,35 +197,37 @@ impl SweepAndPrune {
     }
 }
 
-/// Writes `found` (pairs `(i, j)`, `i < j < n`, each once) to `pairs` in increasing order: a
-/// counting sort by `i`, then each `i`'s few pairs by `j`. The strips find a pile's pairs
-/// (over 10,000 while it lands) in sweep order, which a comparison sort took 1% of the
-/// pile's step to put in order.
-fn order_pairs(
-    found: &[(usize, usize)],
+/// Writes `found` (items each naming a pair `(i, j)`, `i < n`, by `pair`; no two alike) to
+/// `ordered` in increasing order: a counting sort by `i`, then each `i`'s few items in order.
+/// The strips find a pile's pairs (over 10,000 while it lands) in sweep order, which a
+/// comparison sort took 1% of the pile's step to put in order; the contact set's held pairs
+/// come in the order of their contacts' heights.
+pub(crate) fn order_by_pair<T: Copy + Ord + Default>(
+    found: &[T],
+    pair: impl Fn(&T) -> (usize, usize),
     firsts: &mut Vec<usize>,
     n: usize,
-    pairs: &mut Vec<(usize, usize)>,
+    ordered: &mut Vec<T>,
 ) {
     firsts.clear();
     firsts.resize(n + 1, 0);
-    for &(i, _) in found {
-        firsts[i + 1] += 1;
+    for item in found {
+        firsts[pair(item).0 + 1] += 1;
     }
     for i in 0..n {
         firsts[i + 1] += firsts[i];
     }
-    pairs.clear();
-    pairs.resize(found.len(), (0, 0));
-    for &pair in found {
-        let next = &mut firsts[pair.0];
-        pairs[*next] = pair;
+    ordered.clear();
+    ordered.resize(found.len(), T::default());
+    for item in found {
+        let next = &mut firsts[pair(item).0];
+        ordered[*next] = *item;
         *next += 1;
     }
-    // Each `firsts[i]` now holds where `i`'s pairs end, which is where `i + 1`'s start.
+    // Each `firsts[i]` now holds where `i`'s items end, which is where `i + 1`'s start.
     let mut start = 0;
     for &end in &firsts[..n] {
-        pairs[start..end].sort_unstable();
+        ordered[start..end].sort_unstable();
         start = end;
     }
 }

@@ -37,6 +37,7 @@ mod load_estimate;
 mod parallel;
 mod parry_bridge;
 mod press;
+mod proved_normal;
 mod rewind;
 mod rotation;
 mod rows;

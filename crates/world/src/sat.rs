@@ -12,7 +12,7 @@
 
 use nalgebra::{UnitQuaternion, Vector3};
 
-use crate::apart::AxisGap;
+use crate::apart::{AxisFrame, AxisGap};
 
 /// A convex polytope in its own frame.
 #[derive(Debug, Clone, PartialEq)]
@@ -80,6 +80,12 @@ impl Polytope {
         &self.faces
     }
 
+    /// Each edge's two vertices and two faces, by index.
+    #[cfg(test)]
+    pub(crate) fn edges(&self) -> impl Iterator<Item = ([usize; 2], [usize; 2])> + '_ {
+        self.edges.iter().map(|e| (e.ends, e.faces))
+    }
+
     /// The least width across the polytope between two parallel planes, one of them a face's:
     /// over its faces, how far the vertices reach back from the face's plane (m).
     pub(crate) fn thickness(&self) -> f64 {
@@ -87,6 +93,18 @@ impl Polytope {
             .iter()
             .map(|(n, d)| d + self.support(&-n))
             .fold(f64::INFINITY, f64::min)
+    }
+
+    /// A vertex furthest along `direction` (the first of those that tie).
+    pub(crate) fn support_point(&self, direction: &Vector3<f64>) -> Vector3<f64> {
+        let mut best = (f64::NEG_INFINITY, self.centre);
+        for v in &self.vertices {
+            let along = v.dot(direction);
+            if along > best.0 {
+                best = (along, *v);
+            }
+        }
+        best.1
     }
 
     /// The largest of `direction · v` over the vertices.
@@ -123,7 +141,7 @@ pub(crate) fn separating_axis(
         if !consider(separation, *n) {
             return Err(Some(AxisGap {
                 separation,
-                on_first: true,
+                frame: AxisFrame::First,
             }));
         }
     }
@@ -134,7 +152,7 @@ pub(crate) fn separating_axis(
         if !consider(separation, *axis) {
             return Err(Some(AxisGap {
                 separation,
-                on_first: false,
+                frame: AxisFrame::Second,
             }));
         }
     }
@@ -188,7 +206,10 @@ pub(crate) fn separating_axis(
             // polytopes' extents along the axis end, so the separation is that of the edges.
             let separation = axis.dot(&(p - r));
             if !consider(separation, axis) {
-                return Err(None);
+                return Err(Some(AxisGap {
+                    separation,
+                    frame: AxisFrame::Space,
+                }));
             }
         }
     }
