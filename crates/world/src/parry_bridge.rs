@@ -481,8 +481,8 @@ fn deepest_of(a: &Collider, b: &Collider, pos_ba: &Pose, start: Vector) -> Optio
 
 /// A cylinder against a box or a hull (placed by the poses of their shapes' frames) when a face
 /// of the polytope is proved to give their normal, or to hold them apart beyond `prediction`
-/// ([`crate::proved_normal`]): [`contact_normal`]'s answer, from `b` into `a`. `None` for any other
-/// pair, and where the faces prove neither.
+/// ([`crate::proved_normal`]): [`contact_normal`]'s answer, from `b` into `a`. `None` for any
+/// other pair, and where the faces prove neither.
 fn cylinder_on_face(
     a: &Collider,
     pose_a: &Pose,
@@ -490,30 +490,16 @@ fn cylinder_on_face(
     pose_b: &Pose,
     prediction: f64,
 ) -> Option<Result<Vector3<f64>, Option<AxisGap>>> {
-    let (polytope_is_a, polytope, polytope_pose, cylinder, cylinder_pose, cylinder_local) = match (
-        &a.polytope,
-        b.shape.as_cylinder(),
-        &b.polytope,
-        a.shape.as_cylinder(),
-    ) {
-        (Some(polytope), Some(cylinder), _, _) => {
-            (true, polytope, pose_a, cylinder, pose_b, b.local)
-        }
-        (_, _, Some(polytope), Some(cylinder)) => {
-            (false, polytope, pose_b, cylinder, pose_a, a.local)
-        }
-        _ => return None,
-    };
-    // The cylinder's body in the polytope's frame: parry's cylinders stand along y, the
-    // body's along z.
-    let body = *cylinder_pose * cylinder_local.inverse();
-    let placed = polytope_pose.inverse() * body;
-    let q = placed.rotation;
-    let placed = PlacedCylinder {
-        centre: from_glam(placed.translation),
-        rotation: UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q.w, q.x, q.y, q.z)),
-        radius: cylinder.radius,
-        half_height: cylinder.half_height,
+    let (polytope_is_a, polytope, polytope_pose, cylinder, cylinder_pose) =
+        match (&a.polytope, &b.polytope) {
+            (Some(polytope), _) => (true, polytope, pose_a, b, pose_b),
+            (_, Some(polytope)) => (false, polytope, pose_b, a, pose_a),
+            _ => return None,
+        };
+    // The cylinder in the polytope's frame.
+    let Some(Solid::Cylinder(placed)) = cylinder.solid(&(polytope_pose.inverse() * *cylinder_pose))
+    else {
+        return None;
     };
     Some(match face_verdict(polytope, &placed, prediction)? {
         FaceVerdict::Normal(outward) => {
