@@ -22,15 +22,17 @@
 //! are still farther apart than that (no two points are nearer than the separation along any
 //! axis), so no contact within the margin exists, and the pair is skipped. A test might still
 //! have answered with a contact: along its turned axes the separation can fall short of the
-//! distance (two cubes corner to corner are separated by a third of their distance along a
-//! face normal), and such a contact, farther apart than the margin, is what the pair kept
-//! apart goes without. On the 1000-shape pile at rest some 56 pairs a step, apart only along
+//! distance (two cubes corner to corner are separated along a face normal by 1/√3 of their
+//! distance), and such a contact, farther apart than the margin, is what the pair kept apart
+//! goes without. On the 1000-shape pile at rest some 56 pairs a step, apart only along
 //! an edge–edge axis, had been tested afresh every step.
 //!
 //! Nothing in the bound needs the axis to be a face normal: any axis fixed in the owner's frame
 //! serves, as long as the separation along it is measured against the true shapes. A pair with
 //! a ball or a cylinder is decided by parry's GJK, which reports a contact only within the
-//! margin. When it finds none, the face planes of either shape (a polytope's faces, a
+//! margin (a cylinder against a box or a hull by the polytope's faces first, whose widest
+//! separation beyond the margin is a face's gap as above: [`crate::proved_normal`]). When GJK
+//! finds none, the face planes of either shape (a polytope's faces, a
 //! cylinder's caps) are measured against the other's support function, and where none shows
 //! the pair apart, so is GJK's separating direction (or a ball's direction from the other
 //! shape's nearest point): each such separation is at most the shapes' distance, so the same
