@@ -33,6 +33,10 @@ fn from_glam(v: Vector) -> Vector3<f64> {
     Vector3::new(v.x, v.y, v.z)
 }
 
+fn from_glam_turn(q: Rotation) -> UnitQuaternion<f64> {
+    UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q.w, q.x, q.y, q.z))
+}
+
 /// A body's collision shape placed in the world.
 #[derive(Clone)]
 pub(crate) struct Collider {
@@ -182,14 +186,10 @@ impl Collider {
     /// The shape as [`deepest_normal`] reads it, its shape's frame placed by `pose`: a box or a
     /// hull, or a cylinder; `None` for a ball.
     fn solid(&self, pose: &Pose) -> Option<Solid<'_>> {
-        let nalgebra_turn = |pose: &Pose| {
-            let q = pose.rotation;
-            UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q.w, q.x, q.y, q.z))
-        };
         if let Some(polytope) = &self.polytope {
             return Some(Solid::Polytope {
                 polytope,
-                rotation: nalgebra_turn(pose),
+                rotation: from_glam_turn(pose.rotation),
                 translation: from_glam(pose.translation),
             });
         }
@@ -198,7 +198,7 @@ impl Collider {
         let body = *pose * self.local.inverse();
         Some(Solid::Cylinder(PlacedCylinder {
             centre: from_glam(body.translation),
-            rotation: nalgebra_turn(&body),
+            rotation: from_glam_turn(body.rotation),
             radius: cylinder.radius,
             half_height: cylinder.half_height,
         }))
@@ -389,9 +389,7 @@ pub(crate) fn contact_normal(
             .map_err(of_a);
     }
     if let (Some(polytope_b), Some(polytope_a)) = (&b.polytope, &a.polytope) {
-        let q = pos_ba.rotation;
-        let rotation =
-            UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q.w, q.x, q.y, q.z));
+        let rotation = from_glam_turn(pos_ba.rotation);
         let translation = from_glam(pos_ba.translation);
         let (_, local) =
             sat::separating_axis(polytope_b, polytope_a, &rotation, &translation, prediction)
@@ -764,14 +762,9 @@ pub(crate) mod tests {
             .distance
     }
 
-    /// How far a collider's true shape, its shape's frame placed by `p`, reaches along `d`.
+    /// How far a collider's true shape, its body placed by `p`, reaches along the unit `d`.
     fn support(c: &Collider, p: &Pose, d: Vector) -> f64 {
-        let point = c
-            .shape
-            .as_support_map()
-            .expect("convex")
-            .local_support_point(p.rotation.inverse() * d);
-        (p.rotation * point + p.translation).dot(d)
+        c.reach_along(p, &from_glam(d)).expect("convex")
     }
 
     /// A deterministic uniform generator on [0, 1) (a 64-bit LCG's top 53 bits).
@@ -878,9 +871,7 @@ pub(crate) mod tests {
                 panic!("boxes and hulls have polytopes");
             };
             let pos_ab = pose_a.inverse() * pose_b;
-            let q = pos_ab.rotation;
-            let rotation =
-                UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q.w, q.x, q.y, q.z));
+            let rotation = from_glam_turn(pos_ab.rotation);
             let translation = from_glam(pos_ab.translation);
             let (separation, axis) = sat::separating_axis(
                 polytope_a,
@@ -980,7 +971,7 @@ pub(crate) mod tests {
                 let normal = contact_normal(&a, &pose_a, &b, &pose_b, 0.0, hint.as_ref())
                     .expect("touching, as found without a hint");
                 let n = to_glam(&normal);
-                let overlap = support(&b, &sharp_b, n) + support(&a, &sharp_a, -n);
+                let overlap = support(&b, &pose_b, n) + support(&a, &pose_a, -n);
                 assert!(
                     overlap >= least - tolerance && overlap <= most + tolerance,
                     "case {case}, hint {hint:?}: overlap {overlap} along the normal, EPA's \
@@ -1055,7 +1046,7 @@ pub(crate) mod tests {
                 Ok(n) => {
                     // From b into a: b reaches up along it, a down against it.
                     let n = to_glam(&n);
-                    let along = -support(b, &sharp_b, n) - support(a, &sharp_a, -n);
+                    let along = -support(b, &pose_b, n) - support(a, &pose_a, -n);
                     let contact = reference.expect("within the prediction of each other");
                     // EPA and GJK stop within about 1e-6 of the least overlap or the distance
                     // on shapes of size 1.
@@ -1209,7 +1200,7 @@ pub(crate) mod tests {
                 continue;
             };
             let n = sharp_b.rotation * local;
-            let overlap = support(&b, &sharp_b, n) + support(&a, &sharp_a, -n);
+            let overlap = support(&b, &pose_b, n) + support(&a, &pose_a, -n);
             // EPA stops within about 1e-6 of the least overlap on shapes of size 1.
             assert!(
                 (overlap + contact.dist).abs() <= 1e-5,
