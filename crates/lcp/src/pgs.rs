@@ -74,6 +74,19 @@
 //! velocity change, so it reads in m/s (rad/s for angular rows) whatever the masses, unlike
 //! `max |Δλ|`.
 //!
+//! **Quiet blocks.** Within an island that goes on sweeping, a block is passed over while it is
+//! quiet: its last update moved its rows' velocities by less than the tolerance, and the other
+//! blocks' updates since have moved its two bodies by less than the tolerance in all (each
+//! update's change is added to both its bodies; a body no impulse moves never counts as
+//! moved). Its update would then change about as little as the island's stopping test lets
+//! pass, so skipping it keeps the answer within that test's reach and costs one comparison. A
+//! pile is one island through its bodies' contacts, and at rest a few blocks that keep
+//! trading a fraction of a mm/s kept every one of its thousands of blocks sweeping: on the
+//! settled 1000-cube pile the velocity solve ran its 12 sweeps on most steps (12 485 rows, the
+//! largest row change stuck at 5e-4 m/s by two blocks under one body), and with quiet blocks
+//! passed over it stops after about one sweep's work. With a tolerance of 0 nothing is passed
+//! over.
+//!
 //! Decision record: the projection sees the whole block, not one row, because the face model's
 //! centre of pressure couples three rows (τ₁, τ₂, f₃) and cannot be clamped one row at a time.
 //! Box2D relaxes and warm-starts; Jolt warm-starts; the paper does neither, so both are options
@@ -83,7 +96,7 @@
 
 use std::ops::Range;
 
-use nalgebra::{Matrix6, Vector3, Vector6};
+use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
 
 use crate::island::BlockIslands;
 use crate::{Jacobian, LcpError, Problem, Projection, SolverBody, TwistCoupling};
@@ -122,7 +135,8 @@ pub struct PgsParams {
     pub iterations: usize,
     /// An island stops before `iterations` after a sweep in which every one of its rows' updates
     /// changed that row's own velocity by less than this (`|Δλ| · J M⁻¹ Jᵀ`: m/s, or rad/s for
-    /// angular rows). 0, the default here and the paper's setting, runs every sweep.
+    /// angular rows), and within a sweep its quiet blocks are passed over (module doc). 0, the
+    /// default here and the paper's setting, runs every sweep over every block.
     pub tolerance: f64,
     /// Relaxation ω in (0, 2); see [`DEFAULT_RELAXATION`].
     pub relaxation: f64,
@@ -149,7 +163,8 @@ impl Default for PgsParams {
 pub struct PgsInfo {
     /// Most sweeps an island ran: `iterations`, or fewer when every island met the `tolerance`.
     pub sweeps: usize,
-    /// Row updates made (each island's sweeps × its rows), for throughput figures.
+    /// Row updates made (the rows of every block each sweep visited: all but the quiet ones), for
+    /// throughput figures.
     pub row_updates: usize,
     /// `max |Δλ|` per sweep (over the islands that ran it) when [`Record::ImpulseChange`] was
     /// asked for, else empty.
@@ -211,6 +226,8 @@ pub struct PgsWorkspace {
     block_impulse: Vec<f64>,
     /// The block's impulses as already pushed into the velocities.
     block_applied: Vec<f64>,
+    /// Quiet blocks, see [`Quiet`].
+    quiet: Quiet,
 }
 
 /// Solves `problem` with default parameters and a fresh workspace.
@@ -330,10 +347,10 @@ fn solve_islands<P: Projection>(
     // A problem without blocks is swept as one empty island, to report its sweeps.
     let none = islands.iter().next().is_none().then_some(&[][..]);
     for blocks in islands.iter().chain(none) {
-        let rows: usize = blocks.iter().map(|&b| problem.blocks[b].rows.len()).sum();
         let mut ran = params.iterations;
         for sweeps in 1..=params.iterations {
-            let change = sweep(problem, workspace, blocks, params.relaxation)?;
+            let (change, rows) = sweep(problem, workspace, blocks, params)?;
+            info.row_updates = info.row_updates.saturating_add(rows);
             if params.record == Record::ImpulseChange {
                 match info.impulse_change.get_mut(sweeps - 1) {
                     Some(largest) => *largest = largest.max(change.impulse),
@@ -346,7 +363,6 @@ fn solve_islands<P: Projection>(
             }
         }
         info.sweeps = info.sweeps.max(ran);
-        info.row_updates = info.row_updates.saturating_add(ran.saturating_mul(rows));
     }
     Ok(())
 }
@@ -372,6 +388,7 @@ fn prepare<P: Projection>(
     workspace.block_impulse.resize(widest, 0.0);
     workspace.block_applied.resize(widest, 0.0);
     workspace.loaded.clear();
+    workspace.quiet.reset(bodies, blocks.len());
     if prepared == Prepared::No {
         workspace.whole.clear();
         workspace.responded.clear();
@@ -462,16 +479,76 @@ impl Change {
     }
 }
 
-/// One Gauss–Seidel pass over `blocks` (an island's, in order); returns how much it changed the
-/// impulses.
+/// Which blocks a sweep passes over as quiet (module doc).
+#[derive(Debug, Clone, Default)]
+struct Quiet {
+    /// Per body: the sum of the changes of the updates that moved it in this solve (0 for a body
+    /// no impulse moves).
+    moved: Vec<f64>,
+    /// Per body: whether an impulse moves it.
+    movable: Vec<bool>,
+    /// Per block: its last update's change, and its bodies' `moved` just after it; an infinite
+    /// change before its first update.
+    last: Vec<(f64, [f64; 2])>,
+}
+
+impl Quiet {
+    /// Before a solve of a problem of `bodies` and `blocks` blocks: nothing quiet yet.
+    fn reset(&mut self, bodies: &[SolverBody], blocks: usize) {
+        self.moved.clear();
+        self.moved.resize(bodies.len(), 0.0);
+        self.movable.clear();
+        self.movable.extend(
+            bodies
+                .iter()
+                .map(|b| b.inv_mass > 0.0 || b.inv_inertia_world != Matrix3::zeros()),
+        );
+        self.last.clear();
+        self.last.resize(blocks, (f64::INFINITY, [0.0; 2]));
+    }
+
+    /// Whether `block`, between bodies `a` and `b`, is quiet under `tolerance`.
+    fn skips(&self, block: usize, a: usize, b: usize, tolerance: f64) -> bool {
+        let (change, seen) = self.last[block];
+        change < tolerance
+            && self.moved[a] - seen[0] < tolerance
+            && self.moved[b] - seen[1] < tolerance
+    }
+
+    /// Records `block`'s update, which changed its rows' velocities by up to `change`.
+    fn updated(&mut self, block: usize, a: usize, b: usize, change: f64) {
+        for body in [a, b] {
+            if self.movable[body] {
+                self.moved[body] += change;
+            }
+        }
+        self.last[block] = (change, [self.moved[a], self.moved[b]]);
+    }
+}
+
+/// One Gauss–Seidel pass over `blocks` (an island's, in order), passing over the quiet ones;
+/// returns how much it changed the impulses and how many rows it visited.
 fn sweep<P: Projection>(
     problem: &mut Problem<P>,
     workspace: &mut PgsWorkspace,
     blocks: &[usize],
-    relaxation: f64,
-) -> Result<Change, LcpError> {
+    params: &PgsParams,
+) -> Result<(Change, usize), LcpError> {
+    let relaxation = params.relaxation;
     let mut largest_change = Change::default();
+    let mut visited = 0;
     for &index in blocks {
+        let (body_a, body_b) = (
+            problem.blocks[index].body_a.0,
+            problem.blocks[index].body_b.0,
+        );
+        if workspace
+            .quiet
+            .skips(index, body_a, body_b, params.tolerance)
+        {
+            continue;
+        }
+        visited += problem.blocks[index].rows.len();
         if stays_unloaded(problem, workspace, index, relaxation) {
             continue;
         }
@@ -512,9 +589,12 @@ fn sweep<P: Projection>(
             None => update_block(problem, workspace, index, rows.clone(), relaxation)?,
         };
         workspace.loaded[index] = problem.rows[rows].iter().any(|row| row.impulse != 0.0);
+        workspace
+            .quiet
+            .updated(index, body_a, body_b, change.velocity);
         largest_change = largest_change.max(change);
     }
-    Ok(largest_change)
+    Ok((largest_change, visited))
 }
 
 /// Whether block `index` carries nothing and its normal rows' steps would leave it so: each
@@ -1020,7 +1100,7 @@ fn held_responses<P: Projection>(
         Support::B => &mut b,
     };
     held.inv_mass = 0.0;
-    held.inv_inertia_world = nalgebra::Matrix3::zeros();
+    held.inv_inertia_world = Matrix3::zeros();
     let end = start + block.rows.len();
     responses_of(
         block,
