@@ -84,8 +84,9 @@
 //! trading a fraction of a mm/s kept every one of its thousands of blocks sweeping: on the
 //! settled 1000-cube pile the velocity solve ran its 12 sweeps on most steps (12 485 rows, the
 //! largest row change stuck at 5e-4 m/s by two blocks under one body), and with quiet blocks
-//! passed over it stops after about one sweep's work. With a tolerance of 0 nothing is passed
-//! over.
+//! passed over it does about two sweeps' work a step. While a pile lands its blocks are
+//! rarely quiet (under 2% of the visits passed over, a ninth as it comes to rest). With a
+//! tolerance of 0 nothing is passed over.
 //!
 //! Decision record: the projection sees the whole block, not one row, because the face model's
 //! centre of pressure couples three rows (τ₁, τ₂, f₃) and cannot be clamped one row at a time.
