@@ -71,7 +71,7 @@ pub(crate) struct BlockIslands {
 }
 
 /// Whether an impulse can move `body`: it joins the islands of the blocks on it.
-fn movable(body: &SolverBody) -> bool {
+pub(crate) fn movable(body: &SolverBody) -> bool {
     body.inv_mass != 0.0 || body.inv_inertia_world != nalgebra::Matrix3::zeros()
 }
 

@@ -32,6 +32,7 @@ mod island;
 pub mod lemke;
 pub mod linear_set;
 pub mod pgs;
+mod quiet;
 pub mod residual;
 mod row;
 

@@ -97,9 +97,10 @@
 
 use std::ops::Range;
 
-use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
+use nalgebra::{Matrix6, Vector3, Vector6};
 
 use crate::island::BlockIslands;
+use crate::quiet::Quiet;
 use crate::{Jacobian, LcpError, Problem, Projection, SolverBody, TwistCoupling};
 
 /// PGS sweeps per step. Default [`DEFAULT_ITERATIONS`] = 15 (the paper; Springhead's numIter).
@@ -227,7 +228,7 @@ pub struct PgsWorkspace {
     block_impulse: Vec<f64>,
     /// The block's impulses as already pushed into the velocities.
     block_applied: Vec<f64>,
-    /// Quiet blocks, see [`Quiet`].
+    /// Which blocks the sweeps pass over.
     quiet: Quiet,
 }
 
@@ -477,53 +478,6 @@ impl Change {
             impulse: self.impulse.max(other.impulse),
             velocity: self.velocity.max(other.velocity),
         }
-    }
-}
-
-/// Which blocks a sweep passes over as quiet (module doc).
-#[derive(Debug, Clone, Default)]
-struct Quiet {
-    /// Per body: the sum of the changes of the updates that moved it in this solve (0 for a body
-    /// no impulse moves).
-    moved: Vec<f64>,
-    /// Per body: whether an impulse moves it.
-    movable: Vec<bool>,
-    /// Per block: its last update's change, and its bodies' `moved` just after it; an infinite
-    /// change before its first update.
-    last: Vec<(f64, [f64; 2])>,
-}
-
-impl Quiet {
-    /// Before a solve of a problem of `bodies` and `blocks` blocks: nothing quiet yet.
-    fn reset(&mut self, bodies: &[SolverBody], blocks: usize) {
-        self.moved.clear();
-        self.moved.resize(bodies.len(), 0.0);
-        self.movable.clear();
-        self.movable.extend(
-            bodies
-                .iter()
-                .map(|b| b.inv_mass > 0.0 || b.inv_inertia_world != Matrix3::zeros()),
-        );
-        self.last.clear();
-        self.last.resize(blocks, (f64::INFINITY, [0.0; 2]));
-    }
-
-    /// Whether `block`, between bodies `a` and `b`, is quiet under `tolerance`.
-    fn skips(&self, block: usize, a: usize, b: usize, tolerance: f64) -> bool {
-        let (change, seen) = self.last[block];
-        change < tolerance
-            && self.moved[a] - seen[0] < tolerance
-            && self.moved[b] - seen[1] < tolerance
-    }
-
-    /// Records `block`'s update, which changed its rows' velocities by up to `change`.
-    fn updated(&mut self, block: usize, a: usize, b: usize, change: f64) {
-        for body in [a, b] {
-            if self.movable[body] {
-                self.moved[body] += change;
-            }
-        }
-        self.last[block] = (change, [self.moved[a], self.moved[b]]);
     }
 }
 
@@ -1101,7 +1055,7 @@ fn held_responses<P: Projection>(
         Support::B => &mut b,
     };
     held.inv_mass = 0.0;
-    held.inv_inertia_world = Matrix3::zeros();
+    held.inv_inertia_world = nalgebra::Matrix3::zeros();
     let end = start + block.rows.len();
     responses_of(
         block,
