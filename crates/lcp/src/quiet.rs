@@ -37,6 +37,7 @@ impl Quiet {
 
     /// Whether `block`, between bodies `a` and `b`, is quiet under `tolerance` (never for a
     /// tolerance of 0).
+    #[inline]
     pub(crate) fn skips(&self, block: usize, a: usize, b: usize, tolerance: f64) -> bool {
         let (change, seen) = self.last[block];
         change < tolerance
@@ -45,6 +46,7 @@ impl Quiet {
     }
 
     /// Records `block`'s update, which changed its rows' velocities by up to `change`.
+    #[inline]
     pub(crate) fn updated(&mut self, block: usize, a: usize, b: usize, change: f64) {
         for body in [a, b] {
             if self.movable[body] {
