@@ -1109,6 +1109,7 @@ fn responses_of<P: Projection>(
 }
 
 /// How a unit impulse on a row with Jacobian `j` changes the velocities of `a` and `b`.
+#[inline]
 fn response_of(j: &Jacobian, a: &SolverBody, b: &SolverBody) -> RowResponse {
     let mut response = RowResponse {
         linear_a: j.linear_a * a.inv_mass,
@@ -1125,6 +1126,7 @@ fn response_of(j: &Jacobian, a: &SolverBody, b: &SolverBody) -> RowResponse {
 
 /// `J M⁻¹Jᵣᵀ`: how fast a row with Jacobian `j` moves per unit impulse of the row whose response
 /// is `response`.
+#[inline]
 fn along(j: &Jacobian, response: &RowResponse) -> f64 {
     j.linear_a.dot(&response.linear_a)
         + j.angular_a.dot(&response.angular_a)
@@ -1133,6 +1135,7 @@ fn along(j: &Jacobian, response: &RowResponse) -> f64 {
 }
 
 /// `v += M⁻¹Jᵀ λ` for both bodies of a row.
+#[inline]
 fn apply(bodies: &mut [SolverBody], a: usize, b: usize, response: &RowResponse, impulse: f64) {
     bodies[a].linear_velocity += response.linear_a * impulse;
     bodies[a].angular_velocity += response.angular_a * impulse;

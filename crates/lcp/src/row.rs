@@ -64,6 +64,7 @@ impl Jacobian {
     }
 
     /// The sum of the twelve coefficients, `±∞` or NaN if any is not finite.
+    #[inline]
     fn sum(&self) -> f64 {
         let sum = (self.linear_a + self.angular_a) + (self.linear_b + self.angular_b);
         sum.x + sum.y + sum.z
@@ -94,6 +95,7 @@ impl Row {
     /// proves it at one addition each (an infinity or a NaN among them makes the sum one); only
     /// a sum that is not finite, which finite values can also reach by overflow, is looked at
     /// value by value.
+    #[inline]
     pub(crate) fn is_finite(&self) -> bool {
         (self.jacobian.sum() + self.target + self.impulse).is_finite()
             || (self.jacobian.is_finite() && self.target.is_finite() && self.impulse.is_finite())
