@@ -79,7 +79,7 @@
 //! blocks' updates since have moved its two bodies by less than the tolerance in all (each
 //! update's change is added to both its bodies; a body no impulse moves never counts as
 //! moved). Its update would then change about as little as the island's stopping test lets
-//! pass, so skipping it keeps the answer within that test's reach and costs one comparison. A
+//! pass, so skipping it keeps the answer within that test's reach and costs three comparisons. A
 //! pile is one island through its bodies' contacts, and at rest a few blocks that keep
 //! trading a fraction of a mm/s kept every one of its thousands of blocks sweeping: on the
 //! settled 1000-cube pile the velocity solve ran its 12 sweeps on most steps (12 485 rows, the
