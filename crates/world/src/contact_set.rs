@@ -80,8 +80,7 @@ pub(crate) const MOST_REUSE_TOLERANCE: f64 = 1e-4;
 /// 1.08 mm into one another (their slop 1 mm) under 100 µm.
 pub(crate) fn reuse_tolerance(thickness: [f64; 2]) -> f64 {
     (REUSE_SHARE_OF_THICKNESS * thickness[0].min(thickness[1]))
-        .max(REUSE_TOLERANCE)
-        .min(MOST_REUSE_TOLERANCE)
+        .clamp(REUSE_TOLERANCE, MOST_REUSE_TOLERANCE)
 }
 
 /// Where a body was: centre of mass and orientation.
