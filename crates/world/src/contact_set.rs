@@ -44,46 +44,18 @@ use crate::load_estimate::LoadEstimate;
 use crate::parallel;
 use crate::support::{FeatureId, FeatureIds, VertexIds};
 
-/// Least motion of either body (m; a turn counts as rad × the body's size) since a pair's
-/// contact was computed for it to be kept, whatever the bodies' size ([`reuse_tolerance`]):
-/// far below any depth that matters (the slop is 2 mm, and the penetration push is 0.1 of the
-/// depth beyond it a step, so a depth 10 µm stale moves the push by 1 µm; a speculative gap
-/// 10 µm stale lets the bodies close 10 µm more), and above the jitter of a settled pile (half
-/// the 1000-cube pile's cubes move less than 4 µm a step by its end). The motion counts from
-/// the poses the contact was computed at, so a creeping body's contact is recomputed every
-/// time it has moved that far. Measured (`general_comparison`, interleaved runs): 1 µm instead
-/// of 1 nm halved the 210-cube pyramid's collision time; 10 µm instead of 1 µm took a quarter
-/// off the 1000-shape pile's (balls and cylinders rolling slowly, whose contacts are the
-/// dearest to compute) and a little off the cube pile's, and moved the holding and toppling
-/// scenes by micrometres (`CHANGES.md`).
+/// Largest motion of either body (m; a turn counts as rad × the body's size) since a pair's
+/// contact was computed for it to be kept: far below any depth that matters (the slop is 2 mm,
+/// and the penetration push is 0.1 of the depth beyond it a step, so a depth 10 µm stale moves
+/// the push by 1 µm; a speculative gap 10 µm stale lets the bodies close 10 µm more), and
+/// above the jitter of a settled pile (half the 1000-cube pile's cubes move less than 4 µm a
+/// step by its end). The motion counts from the poses the contact was computed at, so a
+/// creeping body's contact is recomputed every 10 µm. Measured (`general_comparison`,
+/// interleaved runs): 1 µm instead of 1 nm halved the 210-cube pyramid's collision time; 10 µm
+/// instead of 1 µm took a quarter off the 1000-shape pile's (balls and cylinders rolling
+/// slowly, whose contacts are the dearest to compute) and a little off the cube pile's, and
+/// moved the holding and toppling scenes by micrometres (`CHANGES.md`).
 pub(crate) const REUSE_TOLERANCE: f64 = 1e-5;
-
-/// The share of the thinner body's thickness either body may move before a pair's contact is
-/// computed again, between [`REUSE_TOLERANCE`] and [`MOST_REUSE_TOLERANCE`]
-/// ([`reuse_tolerance`]).
-pub(crate) const REUSE_SHARE_OF_THICKNESS: f64 = 1e-4;
-
-/// Most motion (m) either body may make before a pair's contact is computed again: reached by
-/// bodies a metre thick or more.
-pub(crate) const MOST_REUSE_TOLERANCE: f64 = 1e-4;
-
-/// How far (m) either body of a pair `thickness` thick (each body's least width) may move, a
-/// turn counting as rad × its size, before the pair's contact is computed again: a
-/// ten-thousandth of the thinner body's thickness, at least [`REUSE_TOLERANCE`] (bodies up to
-/// 10 cm thick) and at most [`MOST_REUSE_TOLERANCE`] (a metre and more). A kept contact is
-/// then as stale, for its bodies' size, whatever that size. A settling pile creeps by 2–20 µm
-/// a step for seconds, so at 10 µm most of its contacts were found afresh (or carried) every
-/// step or every other, each with its bearing part cut again. Measured from the same states
-/// over the next 60 steps, against 10 µm for all (six alternating runs each): the 1000-shape
-/// pile's collision and rows 6–20% shorter in its fourth to eighth seconds (its step 2–8%),
-/// the 1000-cube pile's 2–6% (its step the same within the noise); over the cube pile's whole
-/// run, 6% fewer collision instructions. The contacts of bodies 10 cm thick or less are kept
-/// as before: 1 cm dominoes falling onto each other went 1.08 mm into one another (their
-/// slop 1 mm) under 100 µm.
-pub(crate) fn reuse_tolerance(thickness: [f64; 2]) -> f64 {
-    (REUSE_SHARE_OF_THICKNESS * thickness[0].min(thickness[1]))
-        .clamp(REUSE_TOLERANCE, MOST_REUSE_TOLERANCE)
-}
 
 /// Where a body was: centre of mass and orientation.
 pub(crate) type Pose = (Point3<f64>, UnitQuaternion<f64>);
@@ -183,7 +155,7 @@ struct PairState {
     /// Still touching as of the current collision pass (its contact kept or recomputed).
     touching: bool,
     /// Kept as it was in the current collision pass, neither body having moved by more than
-    /// the pair's [`reuse_tolerance`] since its contact was found.
+    /// [`REUSE_TOLERANCE`] since its contact was found.
     still: bool,
     /// The face model's bearing part of the contact, while the contact is unchanged.
     bearing: Option<Bearing>,
@@ -333,7 +305,7 @@ impl ContactSet {
 
     /// Brings the pairs the set holds up to date, and runs `broad_phase`, which meets the pairs
     /// now overlapping through its [`Meeting`]. A pair keeps its contact if neither body moved
-    /// by more than the pair's [`reuse_tolerance`] since it was computed (`placements` says where each
+    /// by more than [`REUSE_TOLERANCE`] since it was computed (`placements` says where each
     /// body is), so a resting stack's pairs are computed once; a pair whose bodies barely slid
     /// or turned against each other keeps it carried with them, within the bounds given to
     /// [`ContactSet::begin`] ([`carry`]); the others
@@ -357,17 +329,16 @@ impl ContactSet {
         compute: impl Fn(&mut S, (usize, usize), Recycled) -> Option<Computed> + Sync,
         broad_phase: impl FnOnce(&mut Meeting<'_>),
     ) -> usize {
-        let still = |was: &Pose, now: Placement, tolerance: f64| {
-            (now.pose.0 - was.0).norm() <= tolerance
-                && turned_within(&now.pose.1, &was.1, now.size.max(1.0), tolerance)
+        let still = |was: &Pose, now: Placement| {
+            (now.pose.0 - was.0).norm() <= REUSE_TOLERANCE
+                && turned_within(&now.pose.1, &was.1, now.size.max(1.0), REUSE_TOLERANCE)
         };
         // Whether the entry's contact was recomputed.
         let update = |scratch: &mut S, entry: &mut Entry| -> bool {
             let pair = (entry.contact.body_a.0, entry.contact.body_b.0);
             let [was_a, was_b] = &entry.state.poses;
             let (now_a, now_b) = (placements[pair.0], placements[pair.1]);
-            let tolerance = reuse_tolerance([now_a.thickness, now_b.thickness]);
-            entry.state.still = still(was_a, now_a, tolerance) && still(was_b, now_b, tolerance);
+            entry.state.still = still(was_a, now_a) && still(was_b, now_b);
             if entry.state.still {
                 entry.state.touching = true;
                 return false;
@@ -1314,24 +1285,6 @@ mod tests {
         let mut face = rows(&mut set);
         set.warm_start(ContactModel::Face, &mut face, &weight);
         assert!(same(applied(&face), applied(&solved)));
-    }
-
-    /// Pairs of bodies 10 cm thick or less keep the least tolerance to the bit, a metre or more
-    /// the most; between, a ten-thousandth of the thinner body (a floor of infinite thickness
-    /// leaves the other body's).
-    #[test]
-    fn the_reuse_tolerance_follows_the_thinner_body_between_its_bounds() {
-        for thickness in [[0.01, 1.0], [0.1, 0.1], [f64::INFINITY, 0.05]] {
-            assert_eq!(
-                reuse_tolerance(thickness).to_bits(),
-                REUSE_TOLERANCE.to_bits()
-            );
-        }
-        for thickness in [[1.0, 1.0], [3.0, f64::INFINITY], [f64::INFINITY; 2]] {
-            assert_eq!(reuse_tolerance(thickness), MOST_REUSE_TOLERANCE);
-        }
-        assert!((reuse_tolerance([0.5, f64::INFINITY]) - 5e-5).abs() < 1e-18);
-        assert!((reuse_tolerance([2.0, 0.25]) - 2.5e-5).abs() < 1e-18);
     }
 
     /// The bounded test of a turn answers as the arc tangent does, for turns of 1e-9 to 3 rad

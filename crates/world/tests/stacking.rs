@@ -90,9 +90,8 @@ fn a_spinning_cube_stops_at_the_same_rate_with_the_pass() {
 
 #[test]
 fn contacts_kept_for_resting_pairs_match_contacts_computed_afresh() {
-    // The resting tower reuses each pair's contact while neither body moves by more than the
-    // pair's reuse tolerance (100 µm for these 2 m cubes); a world rebuilt at the final state
-    // computes them again from scratch.
+    // The resting tower reuses each pair's contact while neither body moves by more than
+    // 10 µm; a world rebuilt at the final state computes them again from scratch.
     let mut world = tower(10, true);
     run(&mut world, 1.0, |_| {});
     let kept = world.prepare_step(common::DT).unwrap().rows.len();
@@ -116,8 +115,8 @@ fn contacts_kept_for_resting_pairs_match_contacts_computed_afresh() {
         .build()
         .unwrap();
     assert_eq!(fresh.prepare_step(common::DT).unwrap().rows.len(), kept);
-    // 1e-5 m: at rest the cubes have moved far less than that since their contacts were
-    // computed (a tower that crept by up to the tolerance would show here), so a kept
+    // 1e-5 m: at rest the cubes have moved far less than the reuse tolerance since their
+    // contacts were computed (a tower that crept by up to it would show here), so a kept
     // contact's depths and vertices are those computed afresh to within 1e-5 m.
     for (a, b) in kept_contacts.iter().zip(fresh.contacts()) {
         assert_eq!((a.body_a, a.body_b), (b.body_a, b.body_b));
