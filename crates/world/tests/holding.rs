@@ -80,9 +80,9 @@ fn a_pyramid_of_55_cubes_holds() {
 }
 
 /// The planar pyramid of 820 unit cubes (a base of 40, 1 mm gaps, μ 0.5) of
-/// `general_comparison`, at 60 Hz, as the target has it: no cube moves 1 cm in 10 s
-/// (Rapier's defaults move one 11.7 cm), and it is at rest by then, every cube slower than
-/// 1e-5 m/s over the last second (it settles to about 1e-10). Contacts kept until their bodies
+/// `general_comparison`, at 60 Hz: no cube moves 1 cm in 10 s (the bound of the other holding
+/// scenes; Rapier's defaults move one 11.7 cm), and it is at rest by then, every cube slower
+/// than 1e-5 m/s over the last second (it settles to about 1e-10). Contacts kept until their bodies
 /// had moved 100 µm (instead of 10 µm) left every test here passing and the 55-cube and
 /// 210-cube pyramids coming to rest, but this one jolting on at 1e-3 m/s and creeping 4 mm.
 #[test]
