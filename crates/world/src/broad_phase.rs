@@ -9,6 +9,15 @@
 //! across it, each box meets only the boxes of its strips. The order is kept from step to step,
 //! so the sort starts from an almost sorted list, and each strip's boxes are copied in that
 //! order, so the sweep's inner loop reads memory in sequence.
+//!
+//! The sweep runs over the boxes grown by a slack ([`SLACK_SHARE`]), and its pairs are kept:
+//! while every box stays inside its grown one, the pairs whose boxes overlap are among them and
+//! are picked out by testing those alone, as Box2D's and Rapier's broad phases keep fat boxes.
+//! A box that leaves its grown one is grown again where it is and tested against every grown
+//! box; when many leave at once, everything is swept afresh. The same pairs come out either
+//! way, so nothing after the broad phase can tell. The 1000-cube pile swept its 4,200 pairs in
+//! 0.32–0.39 ms a step, and its collision at rest fell from 0.73–0.85 to 0.51–0.58 ms a step
+//! (seconds 8–10; 5,400 grown pairs, none swept after its fourth second).
 
 use nalgebra::Vector3;
 
@@ -21,9 +30,32 @@ struct Swept {
     index: usize,
 }
 
-/// The broad phase's state between steps: the boxes' order along the sweep axis, and scratch.
+/// Slack a box is grown by for the sweep, as a share of its least width (all round): 5 cm for
+/// a 1 m cube's box, so that a body creeping at 1 mm/s leaves it after about a minute, while a
+/// pile's grown boxes overlap in few pairs more than its boxes do.
+const SLACK_SHARE: f64 = 0.05;
+
+/// Most boxes that may leave their grown ones in a pass for the pairs to be brought up to date
+/// box by box. Each such box is tested against every box, a few nanoseconds a box, where a
+/// sweep takes some 350 ns a box (the 1000-cube pile's, at any count of boxes): this many cost
+/// a fraction of a sweep.
+const MOST_REGROWN: usize = 64;
+
+/// The broad phase's state between steps: the grown boxes and their overlapping pairs, the
+/// boxes' order along the sweep axis, and scratch.
 #[derive(Debug, Default, Clone)]
 pub(crate) struct SweepAndPrune {
+    /// Each box grown by its slack when it was last swept or left its grown box.
+    grown: Vec<(Vector3<f64>, Vector3<f64>)>,
+    /// Which boxes were static when the grown pairs were found.
+    grown_static: Vec<bool>,
+    /// Every pair, not both static, whose grown boxes overlap, in increasing order.
+    grown_pairs: Vec<(usize, usize)>,
+    /// Scratch: whether each box left its grown box in this pass.
+    left: Vec<bool>,
+    /// How many passes swept every box.
+    #[cfg(test)]
+    sweeps: usize,
     order: Vec<usize>,
     /// The boxes of every strip in turn, each strip in sweep order.
     swept: Vec<Swept>,
@@ -70,10 +102,90 @@ impl Strips {
     }
 }
 
+/// Whether boxes `a` and `b` overlap (touching counts).
+fn overlap(a: &(Vector3<f64>, Vector3<f64>), b: &(Vector3<f64>, Vector3<f64>)) -> bool {
+    (0..3).all(|d| a.0[d] <= b.1[d] && b.0[d] <= a.1[d])
+}
+
+/// Whether box `inner` lies inside box `outer`.
+fn inside(inner: &(Vector3<f64>, Vector3<f64>), outer: &(Vector3<f64>, Vector3<f64>)) -> bool {
+    (0..3).all(|d| outer.0[d] <= inner.0[d] && inner.1[d] <= outer.1[d])
+}
+
+/// Box `(lo, hi)` grown all round by [`SLACK_SHARE`] of its least width.
+fn grow((lo, hi): &(Vector3<f64>, Vector3<f64>)) -> (Vector3<f64>, Vector3<f64>) {
+    let slack = Vector3::repeat(SLACK_SHARE * (hi - lo).min());
+    (lo - slack, hi + slack)
+}
+
 impl SweepAndPrune {
     /// Writes to `pairs` every `(i, j)`, `i < j`, whose boxes overlap and that are not both
-    /// static, in increasing order.
+    /// static, in increasing order: the grown boxes' pairs that overlap, once those are up to
+    /// date (module doc).
     pub(crate) fn overlapping_pairs(
+        &mut self,
+        boxes: &[(Vector3<f64>, Vector3<f64>)],
+        is_static: &[bool],
+        pairs: &mut Vec<(usize, usize)>,
+    ) {
+        let n = boxes.len();
+        let same_boxes = self.grown.len() == n && self.grown_static == is_static;
+        self.left.clear();
+        if same_boxes {
+            let left = boxes.iter().zip(&self.grown).map(|(b, g)| !inside(b, g));
+            self.left.extend(left);
+        }
+        let leaving = self.left.iter().filter(|&&left| left).count();
+        if !same_boxes || leaving > MOST_REGROWN {
+            self.grown.clear();
+            self.grown.extend(boxes.iter().map(grow));
+            self.grown_static.clear();
+            self.grown_static.extend_from_slice(is_static);
+            let (grown, mut grown_pairs) = (
+                std::mem::take(&mut self.grown),
+                std::mem::take(&mut self.grown_pairs),
+            );
+            self.sweep(&grown, is_static, &mut grown_pairs);
+            (self.grown, self.grown_pairs) = (grown, grown_pairs);
+            #[cfg(test)]
+            {
+                self.sweeps += 1;
+            }
+        } else if leaving > 0 {
+            self.regrow(boxes, is_static);
+        }
+        pairs.clear();
+        pairs.extend((self.grown_pairs.iter()).filter(|&&(i, j)| overlap(&boxes[i], &boxes[j])));
+    }
+
+    /// Grows again the boxes that left their grown ones, and brings the grown pairs up to
+    /// date: those of the other boxes stay as they were, and each regrown box is tested
+    /// against every grown box.
+    fn regrow(&mut self, boxes: &[(Vector3<f64>, Vector3<f64>)], is_static: &[bool]) {
+        let left = &self.left;
+        for (i, _) in left.iter().enumerate().filter(|&(_, &left)| left) {
+            self.grown[i] = grow(&boxes[i]);
+        }
+        self.grown_pairs.retain(|&(i, j)| !left[i] && !left[j]);
+        for (i, _) in left.iter().enumerate().filter(|&(_, &left)| left) {
+            for (j, grown) in self.grown.iter().enumerate() {
+                // A pair of two regrown boxes is found from the first of them.
+                let twice = left[j] && j < i;
+                if j == i || twice || (is_static[i] && is_static[j]) {
+                    continue;
+                }
+                if overlap(&self.grown[i], grown) {
+                    self.grown_pairs.push((i.min(j), i.max(j)));
+                }
+            }
+        }
+        // The pairs kept are in order: the stable sort merges the new ones in.
+        self.grown_pairs.sort();
+    }
+
+    /// Writes to `pairs` every `(i, j)`, `i < j`, whose boxes overlap and that are not both
+    /// static, in increasing order, by sweeping them all.
+    fn sweep(
         &mut self,
         boxes: &[(Vector3<f64>, Vector3<f64>)],
         is_static: &[bool],
@@ -143,10 +255,11 @@ impl SweepAndPrune {
                     if a.is_static && b.is_static {
                         continue;
                     }
-                    let overlap = (0..3).all(|d| a.lo[d] <= b.hi[d] && b.lo[d] <= a.hi[d]);
                     // A pair sharing several strips is reported from the one where their
                     // overlap across the strips begins.
-                    if overlap && strips.of(a.lo[across].max(b.lo[across])) == strip {
+                    if overlap(&(a.lo, a.hi), &(b.lo, b.hi))
+                        && strips.of(a.lo[across].max(b.lo[across])) == strip
+                    {
                         self.found
                             .push((a.index.min(b.index), a.index.max(b.index)));
                     }
@@ -245,9 +358,7 @@ mod tests {
         let mut pairs = Vec::new();
         for i in 0..boxes.len() {
             for j in i + 1..boxes.len() {
-                let (a, b) = (&boxes[i], &boxes[j]);
-                let overlap = (0..3).all(|d| a.0[d] <= b.1[d] && b.0[d] <= a.1[d]);
-                if overlap && !(is_static[i] && is_static[j]) {
+                if overlap(&boxes[i], &boxes[j]) && !(is_static[i] && is_static[j]) {
                     pairs.push((i, j));
                 }
             }
@@ -323,6 +434,77 @@ mod tests {
             let mut pairs = Vec::new();
             broad_phase.overlapping_pairs(&boxes, &is_static, &mut pairs);
             prop_assert_eq!(pairs, brute_force(&boxes, &is_static));
+        });
+    }
+
+    /// Passes over boxes that move as a pile's bodies do, from step to step: all of them
+    /// creeping within their slack, a few leaving it, many at once, a body turning static, a
+    /// body added. Every pass finds the brute force's pairs, whether it sweeps, regrows the
+    /// boxes that left or keeps the grown pairs as they were.
+    #[test]
+    fn grown_boxes_find_the_same_pairs_as_checking_all() {
+        proptest!(ProptestConfig::with_cases(48), |(
+            spots in prop::collection::vec(
+                ((-6.0..6.0f64, -6.0..6.0f64, 0.0..3.0f64), 0.2..1.0f64),
+                64..128,
+            ),
+            moves in prop::collection::vec((0usize..6, any::<u64>()), 12),
+        )| {
+            let mut boxes = vec![(Vector3::new(-20.0, -20.0, -1.0), Vector3::new(20.0, 20.0, 0.0))];
+            let mut is_static = vec![true];
+            for ((x, y, z), size) in spots {
+                let centre = Vector3::new(x, y, z);
+                boxes.push((centre - Vector3::repeat(size), centre + Vector3::repeat(size)));
+                is_static.push(false);
+            }
+            let mut broad_phase = SweepAndPrune::default();
+            let mut pairs = Vec::new();
+            broad_phase.overlapping_pairs(&boxes, &is_static, &mut pairs);
+            prop_assert_eq!(&pairs, &brute_force(&boxes, &is_static));
+            let mut swept = broad_phase.sweeps;
+            for (kind, seed) in moves {
+                let mut random = crate::dropped::Random::new(seed);
+                let n = boxes.len();
+                let was_static = is_static.clone();
+                let mut shift = |k: usize, by: f64| {
+                    let d = Vector3::new(
+                        random.between(-by, by),
+                        random.between(-by, by),
+                        random.between(-by, by),
+                    );
+                    boxes[k].0 += d;
+                    boxes[k].1 += d;
+                };
+                match kind {
+                    // Every body creeps, well within its slack (10 mm on the smallest boxes).
+                    0 | 1 => (1..n).for_each(|k| shift(k, 1e-3)),
+                    // Two bodies leave their slack for the same place.
+                    2 => {
+                        let k = 1 + seed as usize % (n - 2);
+                        shift(k, 2.0);
+                        boxes[n - 1] = boxes[k];
+                    }
+                    // Most bodies move far.
+                    3 => (1..n).for_each(|k| shift(k, 1.5)),
+                    // A body stops being free (a kinematic or fixed one, to the broad phase).
+                    4 => is_static[1 + seed as usize % (n - 1)] = true,
+                    // A body is added.
+                    _ => {
+                        boxes.push((Vector3::new(0.0, 0.0, 0.5), Vector3::new(1.0, 1.0, 1.5)));
+                        is_static.push(false);
+                    }
+                }
+                broad_phase.overlapping_pairs(&boxes, &is_static, &mut pairs);
+                prop_assert_eq!(&pairs, &brute_force(&boxes, &is_static), "after move {}", kind);
+                let sweeps = broad_phase.sweeps - swept;
+                swept = broad_phase.sweeps;
+                // Many boxes leaving may be swept or regrown, as many as they are; a body
+                // already static made static again changes nothing.
+                let changed = boxes.len() != n || is_static != was_static;
+                if kind != 3 {
+                    prop_assert_eq!(sweeps, usize::from(changed), "move {}", kind);
+                }
+            }
         });
     }
 }
