@@ -633,7 +633,7 @@ fn build_bearing(
             twist_centre: settings.twist_centre,
             friction_limit: settings.friction_limit,
             hint: Sector::default(),
-            clearance: contact.support.clearance(&centre),
+            clearance: contact.support.centroid_clearance(),
         }),
     };
     out.blocks.push(Block {

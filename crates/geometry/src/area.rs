@@ -123,9 +123,8 @@ impl ConvexPolygon {
     /// # Ok::<(), tatami_geometry::GeometryError>(())
     /// ```
     pub fn centroid_mean_distance(&self) -> f64 {
-        *self
-            .centroid_mean_distance
-            .get_or_init(|| self.mean_distance(&self.centroid()))
+        self.centroid_mean_distance
+            .get_or(|| self.mean_distance(&self.centroid()))
     }
 
     /// The paper's discretised mean distance (eq. 9): the average of `|x − c|` over the centres

@@ -36,6 +36,7 @@
 pub mod area;
 pub mod brute_force;
 mod error;
+mod kept;
 pub mod locate;
 pub mod nearest;
 pub mod polygon;

@@ -68,6 +68,26 @@ impl ConvexPolygon {
             .max(0.0)
     }
 
+    /// [`clearance`](Self::clearance) about the centroid, computed when first asked and kept:
+    /// the face model reads it for every face contact every step, and a contact whose support
+    /// polygon is unchanged keeps it.
+    ///
+    /// ```
+    /// use nalgebra::Point2;
+    /// use tatami_geometry::ConvexPolygon;
+    ///
+    /// let rectangle = ConvexPolygon::from_points(&[
+    ///     Point2::new(0.0, 0.0), Point2::new(4.0, 0.0), Point2::new(4.0, 2.0), Point2::new(0.0, 2.0),
+    /// ])?;
+    /// assert_eq!(rectangle.centroid_clearance(), 1.0);
+    /// assert_eq!(rectangle.centroid_clearance(), rectangle.clearance(&rectangle.centroid()));
+    /// # Ok::<(), tatami_geometry::GeometryError>(())
+    /// ```
+    pub fn centroid_clearance(&self) -> f64 {
+        self.centroid_clearance
+            .get_or(|| self.clearance(&self.centroid()))
+    }
+
     /// The sector of `p` and whether it is inside.
     pub fn locate(&self, p: &Point2<f64>) -> Location {
         match self.kind() {

@@ -265,4 +265,19 @@ proptest! {
         prop_assert!(before == polygon);
         prop_assert_eq!(polygon.clone().centroid_mean_distance().to_bits(), kept.to_bits());
     }
+
+    /// The kept clearance about the centroid is the one computed afresh, to the bit, for every
+    /// kind of polygon, in the polygon and in copies made before and after it was asked for.
+    #[test]
+    fn the_kept_centroid_clearance_is_the_computed_one(case in polygon_case()) {
+        let polygon = ConvexPolygon::from_points(&case.padded).unwrap();
+        let before = polygon.clone();
+        let computed = polygon.clearance(&polygon.centroid());
+        let kept = polygon.centroid_clearance();
+        prop_assert_eq!(kept.to_bits(), computed.to_bits());
+        prop_assert_eq!(polygon.centroid_clearance().to_bits(), kept.to_bits());
+        prop_assert_eq!(polygon.clone().centroid_clearance().to_bits(), kept.to_bits());
+        prop_assert_eq!(before.centroid_clearance().to_bits(), kept.to_bits());
+        prop_assert!(before == polygon);
+    }
 }
