@@ -105,8 +105,8 @@ impl Contact {
         let m = &self.material;
         Material::new(m.static_friction, m.kinetic_friction, m.restitution)?;
         self.validate_depths()?;
-        // One array, not a chain of the two points' iterators: a tenth of a resting pyramid's
-        // row building was this check before.
+        // One array, not a chain of the two points' iterators, which took a third of these
+        // checks' instructions (3.6% of a resting pyramid's row building).
         let (a, b) = (&self.centre_a, &self.centre_b);
         if ![a.x, a.y, a.z, b.x, b.y, b.z].iter().all(|x| x.is_finite()) {
             return Err(ContactError::NonFinite { what: "centre" });
