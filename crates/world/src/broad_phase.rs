@@ -65,7 +65,8 @@ pub(crate) struct SweepAndPrune {
     cursor: Vec<usize>,
     /// Scratch: the boxes' extents across the strips.
     extents: Vec<f64>,
-    /// Scratch: the pairs as the strips find them, before they are put in order.
+    /// Scratch: the pairs as the strips find them, before they are put in order; and the
+    /// regrown pairs once in order, swapped into the grown pairs.
     found: Vec<(usize, usize)>,
     /// Scratch: where each box's pairs as the lower index start in the ordered list.
     firsts: Vec<usize>,
@@ -179,8 +180,16 @@ impl SweepAndPrune {
                 }
             }
         }
-        // The pairs kept are in order: the stable sort merges the new ones in.
-        self.grown_pairs.sort();
+        // Put in order as the sweep's are, by the counting sort into scratch reused from pass
+        // to pass (a comparison sort's merge buffer was allocated on every pass).
+        order_by_pair(
+            &self.grown_pairs,
+            |&pair| pair,
+            &mut self.firsts,
+            boxes.len(),
+            &mut self.found,
+        );
+        std::mem::swap(&mut self.grown_pairs, &mut self.found);
     }
 
     /// Writes to `pairs` every `(i, j)`, `i < j`, whose boxes overlap and that are not both
@@ -358,7 +367,10 @@ mod tests {
         let mut pairs = Vec::new();
         for i in 0..boxes.len() {
             for j in i + 1..boxes.len() {
-                if overlap(&boxes[i], &boxes[j]) && !(is_static[i] && is_static[j]) {
+                // Written out, not the module's `overlap`: the reference stands on its own.
+                let (a, b) = (&boxes[i], &boxes[j]);
+                let overlap = (0..3).all(|d| a.0[d] <= b.1[d] && b.0[d] <= a.1[d]);
+                if overlap && !(is_static[i] && is_static[j]) {
                     pairs.push((i, j));
                 }
             }
