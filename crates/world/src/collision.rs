@@ -278,12 +278,11 @@ pub(crate) fn detect(
             Found::Nothing => {}
         }
     }
-    // Helpers spinning since the start, or awake from a loop, are kept so until the rows.
-    let helpers_awake = warm.is_some() || on_every_core || new_on_every_core;
-    let warm = (helpers_awake && rows::worth_every_core(set.contacts().len()))
-        .then(|| warm.unwrap_or_else(parallel::Warm::start));
-    set.end(gravity);
-    warm
+    // Helpers spinning since the start, or awake from a loop, take the pairs kept apart while
+    // this thread orders the set, and are kept spinning after it until the rows.
+    let helpers_awake = warm.take().is_some() || on_every_core || new_on_every_core;
+    set.end(gravity, helpers_awake);
+    (helpers_awake && rows::worth_every_core(set.contacts().len())).then(parallel::Warm::start)
 }
 
 /// How far from each other a pair's contact is looked for in a pass ([`speculative`]).
