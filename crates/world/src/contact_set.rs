@@ -958,7 +958,7 @@ fn sort_held(
 
 /// Sorts `items` by `key`, ties in their order (as a stable sort would), with `keys` as
 /// scratch. The keys and positions are sorted, then each item is swapped into place once, and
-/// an item already in place is not moved: an entry is a few hundred bytes, sorting the entries
+/// an item already in place is not moved: an entry is about a kilobyte, sorting the entries
 /// themselves moved each about log n times (1.7% of the 1000-cube pile's step in memmove alone),
 /// and the standard `sort_by_cached_key`, which this follows, also swaps each item in place
 /// with itself, three copies of it (0.1 ms of the pile's step, whose order changes little).

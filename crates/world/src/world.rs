@@ -763,12 +763,12 @@ impl PositionPass {
                 ..*row
             }));
         };
-        let mut blocks = || blocks.clone_from(&velocity.blocks);
+        let mut clone_blocks = || blocks.clone_from(&velocity.blocks);
         if beside {
-            parallel::join_beside(bodies_and_rows, blocks);
+            parallel::join_beside(bodies_and_rows, clone_blocks);
         } else {
             bodies_and_rows();
-            blocks();
+            clone_blocks();
         }
     }
 
