@@ -58,6 +58,10 @@ impl DisjointSets {
 /// reused across solves.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct BlockIslands {
+    /// Per body: whether an impulse can move it ([`movable`]), read twice for every block on
+    /// it. Asked of the body each time (a 3 × 3 comparison), it was a third of the grouping's
+    /// instructions on a resting 1000-cube pile.
+    movable: Vec<bool>,
     /// The bodies, joined through the blocks between two movable ones.
     sets: DisjointSets,
     /// Per body root: its island's index, once its first block is met.
@@ -80,10 +84,13 @@ impl BlockIslands {
     /// between immovable bodies only (they change nothing) form one island of their own.
     pub(crate) fn group<P>(&mut self, problem: &Problem<P>) {
         let bodies = &problem.bodies;
+        self.movable.clear();
+        self.movable.extend(bodies.iter().map(movable));
+        let movable = &self.movable;
         self.sets.reset(bodies.len());
         for block in &problem.blocks {
             let (a, b) = (block.body_a.0, block.body_b.0);
-            if movable(&bodies[a]) && movable(&bodies[b]) {
+            if movable[a] && movable[b] {
                 self.sets.join(a, b);
             }
         }
@@ -95,9 +102,9 @@ impl BlockIslands {
         for block in &problem.blocks {
             let (a, b) = (block.body_a.0, block.body_b.0);
             // The immovable blocks' island is keyed past the last body.
-            let key = if movable(&bodies[a]) {
+            let key = if movable[a] {
                 self.sets.root(a)
-            } else if movable(&bodies[b]) {
+            } else if movable[b] {
                 self.sets.root(b)
             } else {
                 bodies.len()
