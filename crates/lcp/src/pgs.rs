@@ -95,8 +95,6 @@
 //! the impulse each face-model block applied last step (other models' rows matched by contact
 //! feature).
 
-use std::ops::Range;
-
 use nalgebra::{Matrix6, Vector3, Vector6};
 
 use crate::island::BlockIslands;
@@ -541,7 +539,16 @@ fn sweep<P: Projection>(
         };
         let change = match whole {
             Some(change) => change,
-            None => update_block(problem, workspace, index, rows.clone(), relaxation)?,
+            None => update_block(
+                problem,
+                (
+                    &mut workspace.block_impulse[..],
+                    &mut workspace.block_applied[..],
+                ),
+                index,
+                &workspace.responses[rows.clone()],
+                relaxation,
+            )?,
         };
         workspace.loaded[index] = problem.rows[rows].iter().any(|row| row.impulse != 0.0);
         workspace
@@ -694,14 +701,14 @@ fn update_whole_block<P: Projection>(
     Ok(Some(largest_change))
 }
 
-/// Updates the rows of block `index` once each (a friction pair as one 2-D step), with the
-/// responses in `workspace.responses` at `responses` (the block's own, or the shock pass's);
-/// returns how much it changed the impulses.
+/// Updates the rows of block `index` once each (a friction pair as one 2-D step), with its
+/// rows' `responses` (its own, or the shock pass's) and `buffers` for its impulses (the
+/// workspace's `block_impulse` and `block_applied`); returns how much it changed the impulses.
 fn update_block<P: Projection>(
     problem: &mut Problem<P>,
-    workspace: &mut PgsWorkspace,
+    buffers: (&mut [f64], &mut [f64]),
     index: usize,
-    responses: Range<usize>,
+    responses: &[RowResponse],
     relaxation: f64,
 ) -> Result<Change, LcpError> {
     let Problem {
@@ -733,11 +740,8 @@ fn update_block<P: Projection>(
         bodies: (&mut a, &mut b),
         rows: &mut rows[block.rows.clone()],
         projection: &mut block.projection,
-        responses: &workspace.responses[responses],
-        buffers: (
-            &mut workspace.block_impulse[..],
-            &mut workspace.block_applied[..],
-        ),
+        responses,
+        buffers,
         relaxation,
     };
     // A point contact's 3 rows, a segment's 5 and a face's 6 get their own copies of the loop,
@@ -969,6 +973,128 @@ pub fn shock_propagation_per_pair<P: Projection>(
     order: &[(usize, Support)],
     pair_sweeps: usize,
 ) -> Result<(), LcpError> {
+    shock_pass(problem, workspace, order, pair_sweeps, None)
+}
+
+/// [`shock_propagation_per_pair`] with the blocks' responses to their supported bodies
+/// computed ahead ([`HeldResponses::compute`]), on another thread while the sweeps before the
+/// pass run, say. The same answer to the bit, given responses computed from this problem's
+/// Jacobians, blocks and bodies' masses as they are now (a copy of it with other targets,
+/// impulses or velocities gives the same ones); responses computed for another `order`, or for
+/// blocks of other sizes, are not used, and the pass computes its own as it goes.
+///
+/// ```
+/// use nalgebra::{Matrix3, Vector3};
+/// use tatami_lcp::pgs::{self, HeldResponses, PgsWorkspace, Support};
+/// use tatami_lcp::{BodyId, Block, BoundsProjection, Jacobian, Problem, Row, RowBound, SolverBody};
+///
+/// // A 1 kg body falling at 1 m/s onto the ground (body 1, fixed), which holds it.
+/// let body = SolverBody {
+///     inv_mass: 1.0,
+///     inv_inertia_world: Matrix3::identity(),
+///     linear_velocity: Vector3::new(0.0, 0.0, -1.0),
+///     angular_velocity: Vector3::zeros(),
+/// };
+/// let jacobian = Jacobian { linear_a: Vector3::z(), ..Jacobian::default() };
+/// let problem = Problem {
+///     bodies: vec![body, SolverBody::fixed()],
+///     rows: vec![Row { jacobian, target: 0.0, impulse: 0.0 }],
+///     blocks: vec![Block {
+///         body_a: BodyId(0),
+///         body_b: BodyId(1),
+///         rows: 0..1,
+///         projection: BoundsProjection(vec![RowBound::NonNegative]),
+///     }],
+/// };
+/// let order = [(0, Support::B)];
+/// let mut held = HeldResponses::default();
+/// held.compute(&problem, &order)?;
+/// let (mut ahead, mut as_it_goes) = (problem.clone(), problem);
+/// let mut workspace = PgsWorkspace::default();
+/// pgs::shock_propagation_with(&mut ahead, &mut workspace, &order, 1, &held)?;
+/// pgs::shock_propagation_per_pair(&mut as_it_goes, &mut workspace, &order, 1)?;
+/// assert_eq!(ahead.bodies[0].linear_velocity, Vector3::zeros());
+/// assert_eq!(ahead.rows[0].impulse, as_it_goes.rows[0].impulse);
+/// # Ok::<(), tatami_lcp::LcpError>(())
+/// ```
+pub fn shock_propagation_with<P: Projection>(
+    problem: &mut Problem<P>,
+    workspace: &mut PgsWorkspace,
+    order: &[(usize, Support)],
+    pair_sweeps: usize,
+    held: &HeldResponses,
+) -> Result<(), LcpError> {
+    let rows_in_order = |problem: &Problem<P>| -> Option<usize> {
+        order
+            .iter()
+            .map(|&(index, _)| problem.blocks.get(index).map(|block| block.rows.len()))
+            .sum()
+    };
+    let fits = held.order == order && rows_in_order(problem) == Some(held.responses.len());
+    shock_pass(
+        problem,
+        workspace,
+        order,
+        pair_sweeps,
+        fits.then_some(&held.responses[..]),
+    )
+}
+
+/// The responses `M⁻¹Jᵀ` of the blocks of a shock pass's `order` with each block's supporting
+/// body held still, in that order: what the pass computes as it goes, computed ahead for
+/// [`shock_propagation_with`]. They read only the rows' Jacobians, the blocks and the bodies'
+/// masses, so a split-impulse position pass, a copy of the velocity problem with other
+/// targets, can compute them for both passes while the velocity sweeps run.
+#[derive(Debug, Clone, Default)]
+pub struct HeldResponses {
+    /// The order they were computed for.
+    order: Vec<(usize, Support)>,
+    /// Each entry's rows' responses, entry after entry.
+    responses: Vec<RowResponse>,
+}
+
+impl HeldResponses {
+    /// Computes them for `order` on `problem`, reusing this value's buffers.
+    /// [`LcpError::MalformedBlock`] for an `order` entry past the last block, or a block whose
+    /// rows or bodies the problem does not have (nothing is kept then).
+    pub fn compute<P: Projection>(
+        &mut self,
+        problem: &Problem<P>,
+        order: &[(usize, Support)],
+    ) -> Result<(), LcpError> {
+        self.order.clear();
+        self.responses.clear();
+        for &(index, _) in order {
+            let well_formed = problem.blocks.get(index).is_some_and(|block| {
+                block.rows.start <= block.rows.end
+                    && block.rows.end <= problem.rows.len()
+                    && block.body_a.0 < problem.bodies.len()
+                    && block.body_b.0 < problem.bodies.len()
+            });
+            if !well_formed {
+                return Err(LcpError::MalformedBlock { block: index });
+            }
+        }
+        for &(index, support) in order {
+            let start = self.responses.len();
+            let end = start + problem.blocks[index].rows.len();
+            self.responses.resize(end, RowResponse::default());
+            held_responses(problem, index, support, &mut self.responses[start..end]);
+        }
+        self.order.extend_from_slice(order);
+        Ok(())
+    }
+}
+
+/// The shock pass of [`shock_propagation_per_pair`], with `order`'s held responses given
+/// (`held`, entry after entry) or computed as it goes.
+fn shock_pass<P: Projection>(
+    problem: &mut Problem<P>,
+    workspace: &mut PgsWorkspace,
+    order: &[(usize, Support)],
+    pair_sweeps: usize,
+    held: Option<&[RowResponse]>,
+) -> Result<(), LcpError> {
     problem.validate_bounds()?;
     let widest = problem
         .blocks
@@ -986,6 +1112,8 @@ pub fn shock_propagation_per_pair<P: Projection>(
     }
     let sweeps = pair_sweeps.max(1);
     let mut at = 0;
+    // Where the next pair's given responses start in `held`.
+    let mut held_at = 0;
     while at < order.len() {
         // One pair's blocks: the entries after `at` on the same two bodies, held the same way.
         let pair = |&(index, support): &(usize, Support)| {
@@ -998,35 +1126,60 @@ pub fn shock_propagation_per_pair<P: Projection>(
             .count();
         let group = &order[at..at + len];
         at += len;
-        // The blocks' responses with the supporting body immovable go after the solve's own,
-        // in the group's order: all of them first when the pair is swept more than once,
-        // otherwise each when its block is first updated (most blocks of a position pass stay
-        // unloaded and are skipped before).
+        let rows: usize = group
+            .iter()
+            .map(|&(index, _)| problem.blocks[index].rows.len())
+            .sum();
+        // The blocks' responses with the supporting body immovable: given, or written after
+        // the solve's own in the group's order — all of them first when the pair is swept more
+        // than once, otherwise each when its block is first updated (most blocks of a position
+        // pass stay unloaded and are skipped before).
+        let given = held.map(|held| &held[held_at..held_at + rows]);
+        held_at += rows;
         let first = problem.rows.len();
-        let mut end = first;
-        for &(index, _) in group {
-            end += problem.blocks[index].rows.len();
-        }
-        workspace.responses.resize(end, RowResponse::default());
-        if sweeps > 1 {
-            let mut start = first;
-            for &(index, support) in group {
-                start = held_responses(problem, workspace, index, support, start);
+        if given.is_none() {
+            workspace
+                .responses
+                .resize(first + rows, RowResponse::default());
+            if sweeps > 1 {
+                let mut start = first;
+                for &(index, support) in group {
+                    let end = start + problem.blocks[index].rows.len();
+                    held_responses(
+                        problem,
+                        index,
+                        support,
+                        &mut workspace.responses[start..end],
+                    );
+                    start = end;
+                }
             }
         }
         for _ in 0..sweeps {
             let mut change = Change::default();
-            let mut start = first;
+            let mut start = 0;
             for &(index, support) in group {
                 let responses = start..start + problem.blocks[index].rows.len();
                 start = responses.end;
                 if stays_unloaded_held(problem, &problem.blocks[index]) {
                     continue;
                 }
-                if sweeps == 1 {
-                    held_responses(problem, workspace, index, support, responses.start);
-                }
-                change = change.max(update_block(problem, workspace, index, responses, 1.0)?);
+                let responses = match given {
+                    Some(given) => &given[responses],
+                    None => {
+                        let responses = first + responses.start..first + responses.end;
+                        let out = &mut workspace.responses[responses.clone()];
+                        if sweeps == 1 {
+                            held_responses(problem, index, support, out);
+                        }
+                        &workspace.responses[responses]
+                    }
+                };
+                let buffers = (
+                    &mut workspace.block_impulse[..],
+                    &mut workspace.block_applied[..],
+                );
+                change = change.max(update_block(problem, buffers, index, responses, 1.0)?);
             }
             if change.velocity <= SHOCK_PAIR_TOLERANCE {
                 break;
@@ -1036,15 +1189,14 @@ pub fn shock_propagation_per_pair<P: Projection>(
     problem.validate_bodies()
 }
 
-/// Writes block `index`'s responses with its `support` body held still into the workspace from
-/// `start`; returns where they end.
+/// Writes block `index`'s responses with its `support` body held still into `out` (one per
+/// row).
 fn held_responses<P: Projection>(
     problem: &Problem<P>,
-    workspace: &mut PgsWorkspace,
     index: usize,
     support: Support,
-    start: usize,
-) -> usize {
+    out: &mut [RowResponse],
+) {
     let block = &problem.blocks[index];
     let (mut a, mut b) = (
         problem.bodies[block.body_a.0],
@@ -1056,15 +1208,7 @@ fn held_responses<P: Projection>(
     };
     held.inv_mass = 0.0;
     held.inv_inertia_world = nalgebra::Matrix3::zeros();
-    let end = start + block.rows.len();
-    responses_of(
-        block,
-        &problem.rows,
-        &a,
-        &b,
-        &mut workspace.responses[start..end],
-    );
-    end
+    responses_of(block, &problem.rows, &a, &b, out);
 }
 
 /// [`stays_unloaded`] for the shock pass: whether `block` carries nothing and its normal rows

@@ -32,6 +32,7 @@ mod control;
 pub mod dropped;
 mod error;
 pub mod heavy_top;
+mod held_handoff;
 mod impact;
 mod load_estimate;
 mod parallel;

@@ -6,13 +6,14 @@ use std::time::Instant;
 use nalgebra::Vector3;
 use tatami_contact::{Contact, ContactModel, ContactProjection, ContactRows};
 use tatami_lcp::direct::{self, DirectInfo};
-use tatami_lcp::pgs::{self, PgsParams, PgsWorkspace, Record, Support, WarmStart};
+use tatami_lcp::pgs::{self, HeldResponses, PgsParams, PgsWorkspace, Record, Support, WarmStart};
 use tatami_lcp::{DisjointSets, LcpError, Problem, Row, SolverBody};
 
 use crate::body::{BodyKind, Motion};
 use crate::bounce_guard::BounceGuard;
 use crate::collision::{self, BodyGeometry, CollisionSettings, CollisionWorkspace};
 use crate::contact_set::{self, ContactSet, HandedOn, rows_of};
+use crate::held_handoff::HeldHandoff;
 use crate::impact::Impacts;
 use crate::parallel;
 use crate::parry_bridge::Collider;
@@ -74,6 +75,9 @@ pub struct World {
     pgs_workspace: PgsWorkspace,
     /// The position pass's problem and workspace, reused across steps.
     position_pass: PositionPass,
+    /// The shock passes' held responses, computed by the position pass for both
+    /// ([`HeldHandoff`]); reused across steps.
+    held_responses: HeldResponses,
     timings: StepTimings,
     time: f64,
     /// Kahan compensation of `time`, so a thousand steps of 0.01 s end at exactly 10 s.
@@ -121,6 +125,7 @@ impl World {
             bounce_guard: BounceGuard::default(),
             pgs_workspace: PgsWorkspace::default(),
             position_pass: PositionPass::default(),
+            held_responses: HeldResponses::default(),
             timings: StepTimings::default(),
             time: 0.0,
             time_compensation: 0.0,
@@ -560,18 +565,24 @@ impl World {
         let position = &mut self.position_pass;
         let settings = &self.settings;
         let ((velocity_result, solved), position_result) = if !correcting {
-            ((velocity.run(), Instant::now()), Ok(()))
+            ((velocity.run(None), Instant::now()), Ok(()))
         } else if beside {
+            // The position pass computes the shock passes' held responses for both, when the
+            // velocity solve runs one.
+            let handoff = HeldHandoff::new();
+            let held = settings
+                .shock_propagation
+                .then_some((&handoff, &mut self.held_responses));
             parallel::join_beside(
-                || (velocity.run(), Instant::now()),
-                || position.solve(settings, under_gravity, order),
+                || (velocity.run(Some(&handoff)), Instant::now()),
+                || position.solve(settings, under_gravity, order, held),
             )
         } else {
-            let velocity_result = velocity.run();
+            let velocity_result = velocity.run(None);
             let solved = Instant::now();
             // A failed velocity solve ends the step; its pushes are not needed then.
             let position_result = match velocity_result {
-                Ok(_) => position.solve(settings, under_gravity, order),
+                Ok(_) => position.solve(settings, under_gravity, order, None),
                 Err(_) => Ok(()),
             };
             ((velocity_result, solved), position_result)
@@ -696,14 +707,15 @@ struct VelocitySolve<'a> {
 }
 
 impl VelocitySolve<'_> {
-    /// PGS (warm-started by the caller) and, when asked, the guarded shock pass; or the direct
-    /// solver, whose report it returns.
-    fn run(&mut self) -> Result<Option<DirectInfo>, LcpError> {
+    /// PGS (warm-started by the caller) and, when asked, the guarded shock pass, with the held
+    /// responses the position pass computed if it hands them over; or the direct solver, whose
+    /// report it returns.
+    fn run(&mut self, held: Option<&HeldHandoff<'_>>) -> Result<Option<DirectInfo>, LcpError> {
         match &self.settings.solver {
             Solver::Pgs(params) => {
                 pgs::solve_in_place(self.problem, self.workspace, params)?;
                 if self.settings.shock_propagation {
-                    self.guarded_shock_pass()?;
+                    self.guarded_shock_pass(held.and_then(HeldHandoff::take))?;
                 }
                 Ok(None)
             }
@@ -717,10 +729,10 @@ impl VelocitySolve<'_> {
     /// push its load up as if off a fixed floor; undone then, the pass can only take energy out
     /// (a falling stack stopped on its base). Island by island, what the pass does to one pile
     /// does not decide whether another keeps it.
-    fn guarded_shock_pass(&mut self) -> Result<(), LcpError> {
+    fn guarded_shock_pass(&mut self, held: Option<&HeldResponses>) -> Result<(), LcpError> {
         self.set_aside.save(self.problem);
         let sweeps = shock_sweeps_per_pair(self.settings.model);
-        pgs::shock_propagation_per_pair(self.problem, self.workspace, self.order, sweeps)?;
+        shock_pass(self.problem, self.workspace, self.order, sweeps, held)?;
         self.set_aside
             .restore_islands_that_gained(self.problem, self.bodies);
         Ok(())
@@ -773,15 +785,21 @@ impl PositionPass {
     }
 
     /// Solves the pass with `settings`' solver; `order` is [`ContactSet::shock_order`] under
-    /// gravity.
-    fn solve(
+    /// gravity. With `held`, it first computes the shock passes' held responses for both
+    /// passes into the buffer given and hands them to the velocity solve ([`HeldHandoff`]).
+    fn solve<'a>(
         &mut self,
         settings: &WorldSettings,
         under_gravity: bool,
         order: &[(usize, Support)],
+        held: Option<(&HeldHandoff<'a>, &'a mut HeldResponses)>,
     ) -> Result<(), LcpError> {
         match &settings.solver {
             Solver::Pgs(params) => {
+                let problem = &self.problem;
+                let held = held.and_then(|(handoff, held)| {
+                    handoff.offer(held, |held| held.compute(problem, order).is_ok())
+                });
                 let from_rest = PgsParams {
                     warm_start: WarmStart::Off,
                     record: Record::Nothing,
@@ -800,17 +818,27 @@ impl PositionPass {
                 // gravity there is no ground to go up from.
                 if under_gravity {
                     let sweeps = shock_sweeps_per_pair(settings.model);
-                    pgs::shock_propagation_per_pair(
-                        &mut self.problem,
-                        &mut self.workspace,
-                        order,
-                        sweeps,
-                    )?;
+                    shock_pass(&mut self.problem, &mut self.workspace, order, sweeps, held)?;
                 }
                 Ok(())
             }
             Solver::Direct(params) => direct::solve(&mut self.problem, params).map(drop),
         }
+    }
+}
+
+/// The shock pass ([`pgs::shock_propagation_per_pair`]), with `held` responses computed ahead
+/// when there are some ([`pgs::shock_propagation_with`]): the same answer to the bit.
+fn shock_pass(
+    problem: &mut Problem<ContactProjection>,
+    workspace: &mut PgsWorkspace,
+    order: &[(usize, Support)],
+    sweeps: usize,
+    held: Option<&HeldResponses>,
+) -> Result<(), LcpError> {
+    match held {
+        Some(held) => pgs::shock_propagation_with(problem, workspace, order, sweeps, held),
+        None => pgs::shock_propagation_per_pair(problem, workspace, order, sweeps),
     }
 }
 
