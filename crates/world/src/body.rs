@@ -656,6 +656,16 @@ impl Body {
         }
     }
 
+    /// Its state now, as a [`Motion`].
+    pub(crate) fn motion_now(&self) -> Motion {
+        Motion {
+            centre: self.centre,
+            rotation: self.rotation,
+            linear_velocity: self.linear_velocity,
+            angular_velocity: self.angular_velocity,
+        }
+    }
+
     /// Takes the state `motion`.
     pub(crate) fn set_motion(&mut self, motion: &Motion) {
         self.centre = motion.centre;

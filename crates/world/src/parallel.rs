@@ -216,6 +216,18 @@ impl Warm {
     }
 }
 
+impl Warm {
+    /// Whether every helper of the pool is spinning now (none has stopped at `LONGEST_WARM`):
+    /// a loop after the drop then finds them all awake, where one that has to wake a helper
+    /// waits for it.
+    pub(crate) fn all_spinning(&self) -> bool {
+        let helpers = rayon::current_num_threads() - 1;
+        helpers > 0
+            && self.spin.started.load(Ordering::SeqCst) == helpers
+            && self.spin.finished.load(Ordering::SeqCst) == 0
+    }
+}
+
 impl Drop for Warm {
     fn drop(&mut self) {
         self.spin.stop.store(true, Ordering::SeqCst);
@@ -324,6 +336,41 @@ mod tests {
                 std::thread::yield_now();
             }
         }
+    }
+
+    /// Helpers still spinning say so; none do once they have stopped at `LONGEST_WARM`, nor
+    /// on a pool of one thread, where there are none.
+    #[test]
+    fn a_warm_pool_says_whether_its_helpers_still_spin() {
+        let one = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap();
+        assert!(!one.install(|| Warm::start().all_spinning()));
+        let two = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        two.install(|| {
+            let warm = Warm::start();
+            let deadline = Instant::now() + Duration::from_secs(10);
+            while warm.spin.started.load(Ordering::SeqCst) == 0 {
+                assert!(Instant::now() < deadline, "the helper never started");
+                std::thread::yield_now();
+            }
+            // Spinning, unless it has already stopped (read on both sides, as it may stop
+            // meanwhile); a finished helper is never counted.
+            let finished = || warm.spin.finished.load(Ordering::SeqCst);
+            let (before, spinning, after) = (finished(), warm.all_spinning(), finished());
+            if before == after {
+                assert_eq!(spinning, after == 0);
+            }
+            while warm.spin.finished.load(Ordering::SeqCst) == 0 {
+                assert!(Instant::now() < deadline, "the helper never stopped");
+                std::thread::yield_now();
+            }
+            assert!(!warm.all_spinning());
+        });
     }
 
     #[test]

@@ -322,9 +322,9 @@ impl World {
         let collided = Instant::now();
         self.build_problem(dt, warm)?;
         let built = Instant::now();
-        let solved = self.solve_and_correct(dt)?;
+        let (solved, warm) = self.solve_and_correct(dt)?;
         let corrected = Instant::now();
-        self.integrate(dt)?;
+        self.integrate(dt, warm)?;
         self.fall_asleep(dt);
         let integrated = Instant::now();
         self.timings = StepTimings {
@@ -496,8 +496,12 @@ impl World {
     /// solves its own copy of the problem ([`PositionPass`]) and shares nothing with the velocity
     /// solve, so on a large problem it runs on a helper thread meanwhile
     /// ([`parallel::join_beside`]); either way the answer is the same to the bit. Returns when
-    /// the velocity solve ended, for the stage timings.
-    fn solve_and_correct(&mut self, dt: f64) -> Result<Instant, StepError> {
+    /// the velocity solve ended, for the stage timings, and, when the helper that ran the pass
+    /// is kept spinning for the bodies' motions ([`World::integrate`]), what keeps it so.
+    fn solve_and_correct(
+        &mut self,
+        dt: f64,
+    ) -> Result<(Instant, Option<parallel::Warm>), StepError> {
         self.direct_info = None;
         self.pseudo_velocities.clear();
         let correcting = self.biases.iter().any(|&bias| bias != 0.0);
@@ -564,6 +568,15 @@ impl World {
         };
         let position = &mut self.position_pass;
         let settings = &self.settings;
+        // The helper that ran the pass, done before the velocity solve, spins on to take its
+        // share of the bodies' motions (not the calling thread, should it run the pass after
+        // the velocity solve: a helper woken then would start late).
+        let caller = std::thread::current().id();
+        let spin_on = || {
+            (self.bodies.len() >= PARALLEL_MOTIONS && std::thread::current().id() != caller)
+                .then(parallel::Warm::start)
+        };
+        let mut warm = None;
         let ((velocity_result, solved), position_result) = if !correcting {
             ((velocity.run(None), Instant::now()), Ok(()))
         } else if beside {
@@ -573,10 +586,15 @@ impl World {
             let held = settings
                 .shock_propagation
                 .then_some((&handoff, &mut self.held_responses));
-            parallel::join_beside(
+            let (velocity, (position, spinning)) = parallel::join_beside(
                 || (velocity.run(Some(&handoff)), Instant::now()),
-                || position.solve(settings, under_gravity, order, held),
-            )
+                || {
+                    let result = position.solve(settings, under_gravity, order, held);
+                    (result, spin_on())
+                },
+            );
+            warm = spinning;
+            (velocity, position)
         } else {
             let velocity_result = velocity.run(None);
             let solved = Instant::now();
@@ -598,7 +616,7 @@ impl World {
         if correcting {
             self.limit_pseudo_velocities();
         }
-        Ok(solved)
+        Ok((solved, warm))
     }
 
     /// The position pass's answer as pseudo-velocities. Pushes add up along chains of
@@ -639,20 +657,32 @@ impl World {
     /// the bodies nor the impulses and names the body.
     /// The position correction's pseudo-velocities, when the step has one, move the positions
     /// too.
-    fn integrate(&mut self, dt: f64) -> Result<(), StepError> {
+    ///
+    /// Each body's motion is its own, so with `warm` helpers still spinning they take a share
+    /// of them.
+    fn integrate(&mut self, dt: f64, warm: Option<parallel::Warm>) -> Result<(), StepError> {
         let corrections = &self.pseudo_velocities;
+        let (bodies, solved) = (&self.bodies, &self.problem.bodies);
         self.motions.clear();
-        for (index, (body, solved)) in self.bodies.iter().zip(&self.problem.bodies).enumerate() {
-            if body.is_fixed() || body.asleep {
-                continue;
+        self.motions.extend(
+            (bodies.iter().enumerate())
+                .filter(|(_, body)| !body.is_fixed() && !body.asleep)
+                .map(|(index, body)| (index, body.motion_now())),
+        );
+        let move_one = |(index, motion): &mut (usize, Motion)| {
+            *motion = bodies[*index].motion(&solved[*index], corrections.get(*index), dt);
+        };
+        match warm {
+            Some(warm) if warm.all_spinning() => {
+                drop(warm);
+                parallel::for_each(&mut self.motions, || (), |(), item| move_one(item));
             }
-            let motion = body.motion(solved, corrections.get(index), dt);
-            if !motion.is_finite() {
-                return Err(StepError::NonFiniteState {
-                    body: body.name().to_owned(),
-                });
-            }
-            self.motions.push((index, motion));
+            _ => self.motions.iter_mut().for_each(move_one),
+        }
+        if let Some((index, _)) = self.motions.iter().find(|(_, motion)| !motion.is_finite()) {
+            return Err(StepError::NonFiniteState {
+                body: self.bodies[*index].name().to_owned(),
+            });
         }
         // A pair of free bodies the step drives into each other from apart is put back where
         // they met ([`crate::rewind`]).
@@ -878,6 +908,11 @@ fn far_apart_in_mass(contact: &Contact, bodies: &[SolverBody]) -> bool {
 /// [`parallel`]); below this a problem's velocity solve may end first, and the step would
 /// wait for the helper.
 const POSITION_PASS_BESIDE_ROWS: usize = 1024;
+
+/// Fewest bodies whose motions the helper that ran the position pass beside the velocity
+/// solve stays to share ([`World::integrate`]): a body's motion (its free rotation) takes about
+/// 0.2 µs, so a few hundred are worth a loop on two cores.
+const PARALLEL_MOTIONS: usize = 256;
 
 /// A solve's answer — velocities and impulses — kept to be put back, island by island, where
 /// the shock pass added energy; buffers reused.

@@ -2,17 +2,18 @@
 //! core, each as a function of its two bodies alone, and written into the contact set in pair
 //! order; the pairs' rows are built on every core, the helpers' share apart and then joined in
 //! the set's order; the position pass, on its own copy of the problem, runs beside the velocity
-//! solve. So do worlds stepped at once, each inside one of the pool's workers.
+//! solve, computes the shock passes' held responses for both, and its helper then takes a share
+//! of the bodies' motions. So do worlds stepped at once, each inside one of the pool's workers.
 
 use nalgebra::{UnitQuaternion, Vector3};
 use tatami_world::dropped::{Random, mixed_shape};
 use tatami_world::{BodyDesc, Shape, World};
 
-/// 192 bodies of every shape (box, sphere, cylinder, hull), turned at random, dropped in three
+/// 256 bodies of every shape (box, sphere, cylinder, hull), turned at random, dropped in four
 /// layers onto a floor: hundreds of fresh pairs a step once they land, far above the count at
 /// which collision goes parallel, over 256 touching pairs, where their rows go parallel too,
-/// and over 1,024 rows from about the 50th step, where the position pass goes beside the
-/// velocity solve.
+/// over 1,024 rows once they land, where the position pass goes beside the velocity solve, and
+/// 256 bodies besides the floor, whose motions are then shared with the pass's helper.
 fn pile() -> World {
     let mut random = Random::new(7);
     let mut builder = World::builder().body(
@@ -20,7 +21,7 @@ fn pile() -> World {
             .name("floor")
             .position([0.0, 0.0, -1.0]),
     );
-    for k in 0..192 {
+    for k in 0..256 {
         let shape = mixed_shape(&mut random, k);
         let (layer, cell) = (k / 64, k % 64);
         let turn = Vector3::new(random.unit(), random.unit(), random.unit()) * 3.0;
