@@ -740,32 +740,33 @@ impl VelocitySolve<'_> {
     /// PGS (warm-started by the caller) and, when asked, the guarded shock pass, with the held
     /// responses the position pass computed if it hands them over; or the direct solver, whose
     /// report it returns.
+    ///
+    /// The shock pass is kept in each island (bodies joined by contacts) only if it leaves that
+    /// island's bodies with no more kinetic energy than the solve did: held still, a
+    /// supporting body does not feel the pass's reactions, which can push its load up as if off
+    /// a fixed floor; undone then, the pass can only take energy out (a falling stack stopped
+    /// on its base). Island by island, what the pass does to one pile does not decide whether
+    /// another keeps it. It runs on the problem as solved, without checking it again
+    /// ([`pgs::Solved`]).
     fn run(&mut self, held: Option<&HeldHandoff<'_>>) -> Result<Option<DirectInfo>, LcpError> {
         match &self.settings.solver {
+            Solver::Pgs(params) if self.settings.shock_propagation => {
+                let (_, solved) = pgs::solve_for_shock(self.problem, self.workspace, params)?;
+                // The solve's answer set aside, to be put back in the islands the pass gains in.
+                self.set_aside.save(solved.problem());
+                let sweeps = shock_sweeps_per_pair(self.settings.model);
+                let held = held.and_then(HeldHandoff::take);
+                solved.shock_propagation(self.workspace, self.order, sweeps, held)?;
+                self.set_aside
+                    .restore_islands_that_gained(self.problem, self.bodies);
+                Ok(None)
+            }
             Solver::Pgs(params) => {
                 pgs::solve_in_place(self.problem, self.workspace, params)?;
-                if self.settings.shock_propagation {
-                    self.guarded_shock_pass(held.and_then(HeldHandoff::take))?;
-                }
                 Ok(None)
             }
             Solver::Direct(params) => direct::solve(self.problem, params).map(Some),
         }
-    }
-
-    /// The shock pass after the velocity solve, kept in each island (bodies joined by
-    /// contacts) only if it leaves that island's bodies with no more kinetic energy than the
-    /// solve did: held still, a supporting body does not feel the pass's reactions, which can
-    /// push its load up as if off a fixed floor; undone then, the pass can only take energy out
-    /// (a falling stack stopped on its base). Island by island, what the pass does to one pile
-    /// does not decide whether another keeps it.
-    fn guarded_shock_pass(&mut self, held: Option<&HeldResponses>) -> Result<(), LcpError> {
-        self.set_aside.save(self.problem);
-        let sweeps = shock_sweeps_per_pair(self.settings.model);
-        shock_pass(self.problem, self.workspace, self.order, sweeps, held)?;
-        self.set_aside
-            .restore_islands_that_gained(self.problem, self.bodies);
-        Ok(())
     }
 }
 
@@ -840,7 +841,8 @@ impl PositionPass {
                     },
                     ..*params
                 };
-                pgs::solve_in_place(&mut self.problem, &mut self.workspace, &from_rest)?;
+                let (_, solved) =
+                    pgs::solve_for_shock(&mut self.problem, &mut self.workspace, &from_rest)?;
                 // Then, under gravity, one pass from the ground up holding each contact's lower
                 // body still: pseudo-velocities carry no momentum, so nothing is lost by it, and
                 // a stack whatever its height or mass ratio (1 kg under 1000 kg) is pushed apart
@@ -848,27 +850,12 @@ impl PositionPass {
                 // gravity there is no ground to go up from.
                 if under_gravity {
                     let sweeps = shock_sweeps_per_pair(settings.model);
-                    shock_pass(&mut self.problem, &mut self.workspace, order, sweeps, held)?;
+                    solved.shock_propagation(&mut self.workspace, order, sweeps, held)?;
                 }
                 Ok(())
             }
             Solver::Direct(params) => direct::solve(&mut self.problem, params).map(drop),
         }
-    }
-}
-
-/// The shock pass ([`pgs::shock_propagation_per_pair`]), with `held` responses computed ahead
-/// when there are some ([`pgs::shock_propagation_with`]): the same answer to the bit.
-fn shock_pass(
-    problem: &mut Problem<ContactProjection>,
-    workspace: &mut PgsWorkspace,
-    order: &[(usize, Support)],
-    sweeps: usize,
-    held: Option<&HeldResponses>,
-) -> Result<(), LcpError> {
-    match held {
-        Some(held) => pgs::shock_propagation_with(problem, workspace, order, sweeps, held),
-        None => pgs::shock_propagation_per_pair(problem, workspace, order, sweeps),
     }
 }
 
