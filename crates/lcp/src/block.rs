@@ -31,6 +31,17 @@ pub struct Block<P> {
     pub projection: P,
 }
 
+impl<P> Block<P> {
+    /// Whether its row range and bodies lie within a problem of `rows` rows and `bodies`
+    /// bodies.
+    pub(crate) fn within(&self, rows: usize, bodies: usize) -> bool {
+        self.rows.start <= self.rows.end
+            && self.rows.end <= rows
+            && self.body_a.0 < bodies
+            && self.body_b.0 < bodies
+    }
+}
+
 /// The admissible impulses of one row, possibly scaled by another row of the same block.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum RowBound {

@@ -81,11 +81,7 @@ impl<P> Problem<P> {
         self.validate_bodies()?;
         let mut next_row = 0;
         for (block, b) in self.blocks.iter().enumerate() {
-            let fits = b.rows.start == next_row
-                && b.rows.start <= b.rows.end
-                && b.rows.end <= self.rows.len();
-            let known = b.body_a.0 < self.bodies.len() && b.body_b.0 < self.bodies.len();
-            if !fits || !known {
+            if b.rows.start != next_row || !b.within(self.rows.len(), self.bodies.len()) {
                 return Err(LcpError::MalformedBlock { block });
             }
             if self.rows[b.rows.clone()].iter().any(|r| !r.is_finite()) {

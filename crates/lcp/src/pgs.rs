@@ -1165,12 +1165,8 @@ impl HeldResponses {
         self.order.clear();
         self.responses.clear();
         for &(index, _) in order {
-            let well_formed = problem.blocks.get(index).is_some_and(|block| {
-                block.rows.start <= block.rows.end
-                    && block.rows.end <= problem.rows.len()
-                    && block.body_a.0 < problem.bodies.len()
-                    && block.body_b.0 < problem.bodies.len()
-            });
+            let well_formed = (problem.blocks.get(index))
+                .is_some_and(|block| block.within(problem.rows.len(), problem.bodies.len()));
             if !well_formed {
                 return Err(LcpError::MalformedBlock { block: index });
             }

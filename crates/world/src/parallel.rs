@@ -214,9 +214,7 @@ impl Warm {
         }
         Self { spin }
     }
-}
 
-impl Warm {
     /// Whether every helper of the pool is spinning now (none has stopped at `LONGEST_WARM`):
     /// a loop after the drop then finds them all awake, where one that has to wake a helper
     /// waits for it.

@@ -512,7 +512,7 @@ impl World {
         // The helper that cloned the blocks spins until it takes the position pass below:
         // asleep by then and woken for it, it started the pass up to 2 ms late, and
         // at rest, where the pass takes about as long as the velocity solve, the step waited.
-        let warm = (correcting && beside).then(parallel::Warm::start);
+        let until_the_pass = (correcting && beside).then(parallel::Warm::start);
         if let Solver::Pgs(params) = &self.settings.solver
             && params.warm_start == WarmStart::On
         {
@@ -557,7 +557,7 @@ impl World {
         } else {
             &[]
         };
-        drop(warm);
+        drop(until_the_pass);
         let mut velocity = VelocitySolve {
             problem: &mut self.problem,
             workspace: &mut self.pgs_workspace,
@@ -576,7 +576,7 @@ impl World {
             (self.bodies.len() >= PARALLEL_MOTIONS && std::thread::current().id() != caller)
                 .then(parallel::Warm::start)
         };
-        let mut warm = None;
+        let mut for_motions = None;
         let ((velocity_result, solved), position_result) = if !correcting {
             ((velocity.run(None), Instant::now()), Ok(()))
         } else if beside {
@@ -593,7 +593,7 @@ impl World {
                     (result, spin_on())
                 },
             );
-            warm = spinning;
+            for_motions = spinning;
             (velocity, position)
         } else {
             let velocity_result = velocity.run(None);
@@ -616,7 +616,7 @@ impl World {
         if correcting {
             self.limit_pseudo_velocities();
         }
-        Ok((solved, warm))
+        Ok((solved, for_motions))
     }
 
     /// The position pass's answer as pseudo-velocities. Pushes add up along chains of
