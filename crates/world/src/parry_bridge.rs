@@ -1,7 +1,9 @@
-//! Everything that touches parry3d: its glam types are converted here and nowhere else.
+//! Everything that touches parry3d: its glam types are converted here (and in [`epa`], which
+//! works on its support functions) and nowhere else.
 //!
 //! Parry supplies the collision shapes, bounding boxes, solid mass properties of hulls, and the
-//! contact normal of pairs with a curved shape (its GJK and EPA, or its ball manifolds). The
+//! contact normal of pairs with a curved shape (its GJK, then [`epa`] where they overlap, or its
+//! ball manifolds). The
 //! support polygon itself is built by [`crate::support`] from the shapes' full features,
 //! because parry's polygonal features hold at most four vertices (a cylinder cap becomes a
 //! square).
@@ -24,6 +26,8 @@ use crate::box_sat;
 use crate::proved_normal::{FaceVerdict, PlacedCylinder, Solid, deepest_normal, face_verdict};
 use crate::sat::{self, Polytope};
 use crate::shape::{MassProperties, Shape};
+
+mod epa;
 
 fn to_glam(v: &Vector3<f64>) -> Vector {
     Vector::new(v.x, v.y, v.z)
@@ -353,7 +357,7 @@ pub(crate) fn meet_within(
 
 /// The unit contact normal between two colliders, pointing from `b` into `a`, when they are
 /// closer than `prediction`: by the separating-axis test for two boxes (parry's) or two
-/// polytopes ([`sat`]), else from parry's GJK (and EPA) on a cylinder's rounded core (see
+/// polytopes ([`sat`]), else from parry's GJK (and [`epa`]) on a cylinder's rounded core (see
 /// [`ROUNDING`]) — or its contact manifold when one is a ball, whose exact projection is
 /// already cheap.
 ///
@@ -547,9 +551,11 @@ fn sharp_normal(
 }
 
 /// Parry's `contact_support_map_support_map_with_params`, step for step, with this thread's
-/// EPA: parry builds a new one, and allocates its buffers, for every pair whose shapes
+/// EPA buffers: parry builds a new EPA, and allocates its buffers, for every pair whose shapes
 /// overlap (the pile's threads then also waited on the allocator's lock). Its GJK searches
-/// from `start` (in `pos12`'s first frame), or from the centres' offset.
+/// from `start` (in `pos12`'s first frame), or from the centres' offset. Where the shapes
+/// overlap, [`epa::Epa`] finds the way out to a tolerance relative to their size, and parry's
+/// EPA where that cannot grow its polytope cleanly.
 fn gjk_then_epa<G1, G2>(
     pos12: &Pose,
     g1: &G1,
@@ -562,7 +568,7 @@ where
     G2: ?Sized + SupportMap,
 {
     thread_local! {
-        static EPA_BUFFERS: RefCell<EPA> = RefCell::new(EPA::new());
+        static EPA_BUFFERS: RefCell<(epa::Epa, EPA)> = RefCell::new(Default::default());
     }
     let dir = start
         .or_else(|| pos12.translation.try_normalize())
@@ -575,7 +581,10 @@ where
     }
     // The origin is inside the shapes' difference: EPA finds the way out.
     EPA_BUFFERS
-        .with_borrow_mut(|epa| epa.closest_points(pos12, g1, g2, &simplex))
+        .with_borrow_mut(|(relative, parrys)| {
+            (relative.closest_points(pos12, g1, g2, &simplex))
+                .or_else(|| parrys.closest_points(pos12, g1, g2, &simplex))
+        })
         .map_or(
             GJKResult::NoIntersection(Vector::X),
             |(on_1, on_2, normal)| GJKResult::ClosestPoints(on_1, on_2, normal),

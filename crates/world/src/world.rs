@@ -443,7 +443,7 @@ impl World {
     /// contact a kinematic body presses in beyond the slop gets a grip beside the model's
     /// blocks, and one that squeezes its body no pushes for the position pass
     /// ([`crate::press`]). A bounce acts where its landing met
-    /// ([`impact::bounce_where_landed`]).
+    /// ([`crate::impact::bounce_where_landed`]).
     ///
     /// In the contact set's order, on both cores while collision kept the pool's helpers
     /// awake for it ([`crate::rows`]: the calling thread builds from the first pair on
