@@ -3,10 +3,9 @@
 //!
 //! Parry supplies the collision shapes, bounding boxes, solid mass properties of hulls, and the
 //! contact normal of pairs with a curved shape (its GJK, then [`epa`] where they overlap, or its
-//! ball manifolds). The
-//! support polygon itself is built by [`crate::support`] from the shapes' full features,
-//! because parry's polygonal features hold at most four vertices (a cylinder cap becomes a
-//! square).
+//! ball manifolds). The support polygon itself is built by [`crate::support`] from the shapes'
+//! full features, because parry's polygonal features hold at most four vertices (a cylinder cap
+//! becomes a square).
 
 use std::cell::RefCell;
 
@@ -550,12 +549,12 @@ fn sharp_normal(
     }
 }
 
-/// Parry's `contact_support_map_support_map_with_params`, step for step, with this thread's
-/// EPA buffers: parry builds a new EPA, and allocates its buffers, for every pair whose shapes
-/// overlap (the pile's threads then also waited on the allocator's lock). Its GJK searches
-/// from `start` (in `pos12`'s first frame), or from the centres' offset. Where the shapes
-/// overlap, [`epa::Epa`] finds the way out to a tolerance relative to their size, and parry's
-/// EPA where that cannot grow its polytope cleanly.
+/// Parry's `contact_support_map_support_map_with_params`, step for step up to its EPA, with
+/// this thread's EPA buffers: parry builds a new EPA, and allocates its buffers, for every pair
+/// whose shapes overlap (the pile's threads then also waited on the allocator's lock). Its GJK
+/// searches from `start` (in `pos12`'s first frame), or from the centres' offset. Where the
+/// shapes overlap, [`epa::Epa`] finds the way out to a tolerance relative to their size, and
+/// parry's EPA where that cannot ([`epa::Epa::closest_points`]).
 fn gjk_then_epa<G1, G2>(
     pos12: &Pose,
     g1: &G1,

@@ -119,7 +119,7 @@ impl Epa {
             }
             self.grow(support, nearest, FLAT * size)?;
         }
-        // Not within the tolerance by the cap (one pair in a few hundred): parry's EPA, whose
+        // Not within the tolerance by the cap (one pair in about 500): parry's EPA, whose
         // polytope grown as far may have come nearer.
         None
     }
