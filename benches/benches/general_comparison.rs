@@ -16,7 +16,10 @@
 //!
 //! Run: `cargo bench -p tatami-benches --bench general_comparison` (a few minutes). Arguments
 //! after `--` keep only the scenes and engines whose names contain one of them, e.g.
-//! `-- pile tatami` for Tatami on both piles (for a profiler).
+//! `-- pile tatami` for Tatami on both piles (for a profiler). With `--seeds=N` each pile is
+//! also dropped from `N − 1` further seeds, and a summary gives each engine's median over the
+//! courses and Tatami's ratio to rapier3d-f64 course by course: how soon one course settles
+//! moves a pile's median as much as the engines do (`-- --seeds=5 dropped`).
 
 use std::time::{Duration, Instant};
 
@@ -384,29 +387,70 @@ rapier_scene!(rapier_f32, rapier3d, f32);
 /// One engine's run of a scene.
 type Engine = fn(&Scene) -> Result<Measured, String>;
 
+/// Under `--seeds=N`, the cube pile's `k`-th further course (`k` from 1) is dropped from seed
+/// `CUBE_SEEDS + k`: 3, 4, … (its own is seed 1).
+const CUBE_SEEDS: u64 = 2;
+/// Under `--seeds=N`, the mixed pile's `k`-th further course is dropped from seed
+/// `MIXED_SEEDS + k`: 103, 104, … (its own is seed 2).
+const MIXED_SEEDS: u64 = 102;
+
+/// `--seeds=N` among the arguments: how many courses each pile is run on (1 without it).
+fn seeds(arguments: &[String]) -> Result<u64, String> {
+    match arguments.iter().find_map(|a| a.strip_prefix("--seeds=")) {
+        None => Ok(1),
+        Some(n) => match n.parse::<u64>() {
+            Ok(n) if (1..=100).contains(&n) => Ok(n),
+            _ => Err(format!(
+                "--seeds must be a whole number from 1 to 100, got {n:?}"
+            )),
+        },
+    }
+}
+
 fn main() {
-    let scenes: [(&str, Scene); 6] = [
-        ("pyramid, base 20 (210 cubes)", pyramid(20)),
-        ("pyramid, base 40 (820 cubes)", pyramid(40)),
-        (
-            "1000 cubes dropped",
-            pile(1, |_, _| Shape::cuboid([1.0; 3])),
-        ),
-        ("1000 mixed shapes dropped", pile(2, mixed_shape)),
-        ("tower of 100 cubes of 2 m", tower()),
-        ("bin of 300 cubes of 10 cm", bin()),
+    // Cargo passes `--bench` to a bench without a harness; `--seeds=N` is read apart; the rest
+    // are filters.
+    let arguments: Vec<String> = std::env::args()
+        .skip(1)
+        .filter(|a| a != "--bench")
+        .collect();
+    let courses = match seeds(&arguments) {
+        Ok(n) => n,
+        Err(reason) => {
+            eprintln!("general_comparison: {reason}");
+            std::process::exit(2);
+        }
+    };
+    let filters: Vec<&String> = arguments
+        .iter()
+        .filter(|a| !a.starts_with("--seeds="))
+        .collect();
+    let cubes = |_: &mut Random, _: usize| Shape::cuboid([1.0; 3]);
+    let mut scenes: Vec<(String, Scene)> = vec![
+        ("pyramid, base 20 (210 cubes)".into(), pyramid(20)),
+        ("pyramid, base 40 (820 cubes)".into(), pyramid(40)),
+        ("1000 cubes dropped".into(), pile(1, cubes)),
+        ("1000 mixed shapes dropped".into(), pile(2, mixed_shape)),
+        ("tower of 100 cubes of 2 m".into(), tower()),
+        ("bin of 300 cubes of 10 cm".into(), bin()),
     ];
+    for k in 1..courses {
+        let (cube_seed, mixed_seed) = (CUBE_SEEDS + k, MIXED_SEEDS + k);
+        scenes.push((
+            format!("1000 cubes dropped, seed {cube_seed}"),
+            pile(cube_seed, cubes),
+        ));
+        scenes.push((
+            format!("1000 mixed shapes dropped, seed {mixed_seed}"),
+            pile(mixed_seed, mixed_shape),
+        ));
+    }
     let engines: [(&str, Engine); 4] = [
         ("tatami defaults", tatami),
         ("tatami, sleeping on", tatami_sleeping),
         ("rapier3d-f64", rapier_f64),
         ("rapier3d (f32)", rapier_f32),
     ];
-    // Cargo passes `--bench` to a bench without a harness; the rest are filters.
-    let filters: Vec<String> = std::env::args()
-        .skip(1)
-        .filter(|a| a != "--bench")
-        .collect();
     let wanted = |name: &str, all: &[&str]| {
         let named: Vec<_> = filters
             .iter()
@@ -414,7 +458,7 @@ fn main() {
             .collect();
         named.is_empty() || named.iter().any(|f| name.contains(f.as_str()))
     };
-    let scene_names: Vec<&str> = scenes.iter().map(|(n, _)| *n).collect();
+    let scene_names: Vec<&str> = scenes.iter().map(|(n, _)| n.as_str()).collect();
     let engine_names: Vec<&str> = engines.iter().map(|(n, _)| *n).collect();
     println!(
         "| scene | engine | step (ms) | collision | contact set and rows | solve | rest | \
@@ -422,25 +466,90 @@ fn main() {
     );
     println!("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|");
     let ms = |d: Duration| d.as_secs_f64() * 1e3;
+    // Each pile's median step per engine and course, for the summary over courses.
+    let mut piles: Vec<(&str, &str, f64)> = Vec::new();
     for (name, scene) in scenes.iter().filter(|(n, _)| wanted(n, &scene_names)) {
         for (engine, run) in engines
             .into_iter()
             .filter(|(n, _)| wanted(n, &engine_names))
         {
             match run(scene) {
-                Ok(m) => println!(
-                    "| {name} | {engine} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.4} |",
-                    ms(m.step),
-                    ms(m.stages[0]),
-                    ms(m.stages[1]),
-                    ms(m.stages[2]),
-                    ms(m.stages[3]),
-                    m.moved,
-                    m.fastest,
-                    m.penetration
-                ),
+                Ok(m) => {
+                    println!(
+                        "| {name} | {engine} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.4} |",
+                        ms(m.step),
+                        ms(m.stages[0]),
+                        ms(m.stages[1]),
+                        ms(m.stages[2]),
+                        ms(m.stages[3]),
+                        m.moved,
+                        m.fastest,
+                        m.penetration
+                    );
+                    if let Some(pile) = ["1000 cubes dropped", "1000 mixed shapes dropped"]
+                        .into_iter()
+                        .find(|pile| name.starts_with(pile))
+                    {
+                        piles.push((pile, engine, ms(m.step)));
+                    }
+                }
                 Err(e) => println!("| {name} | {engine} | failed: {e} | | | | | | | |"),
             }
         }
+    }
+    if courses > 1 {
+        print_over_courses(&piles);
+    }
+}
+
+/// Under `--seeds=N`: each pile's median step per engine over its courses (the median of
+/// the courses' medians — the upper middle one for an even count — with their range), and each course's ratio of Tatami's defaults to
+/// rapier3d-f64 — one course's median reads how soon that course settles as much as the
+/// engine.
+fn print_over_courses(piles: &[(&str, &str, f64)]) {
+    println!();
+    println!("| pile | engine | courses | median step (ms) | range (ms) |");
+    println!("|---|---|---:|---:|---|");
+    let mut seen: Vec<(&str, &str)> = Vec::new();
+    for &(pile, engine, _) in piles {
+        if seen.contains(&(pile, engine)) {
+            continue;
+        }
+        seen.push((pile, engine));
+        let mut steps: Vec<f64> = piles
+            .iter()
+            .filter(|(p, e, _)| (*p, *e) == (pile, engine))
+            .map(|(_, _, step)| *step)
+            .collect();
+        steps.sort_by(f64::total_cmp);
+        println!(
+            "| {pile} | {engine} | {} | {:.3} | {:.3}–{:.3} |",
+            steps.len(),
+            median(steps.clone()),
+            steps[0],
+            steps[steps.len() - 1]
+        );
+    }
+    for pile in ["1000 cubes dropped", "1000 mixed shapes dropped"] {
+        let of = |engine: &str| -> Vec<f64> {
+            piles
+                .iter()
+                .filter(|(p, e, _)| (*p, *e) == (pile, engine))
+                .map(|(_, _, step)| *step)
+                .collect()
+        };
+        let (tatami, rapier) = (of("tatami defaults"), of("rapier3d-f64"));
+        if tatami.is_empty() || tatami.len() != rapier.len() {
+            continue;
+        }
+        let ratios: Vec<String> = tatami
+            .iter()
+            .zip(&rapier)
+            .map(|(t, r)| format!("{:.2}×", t / r))
+            .collect();
+        println!(
+            "\n{pile}: Tatami's defaults against rapier3d-f64, course by course: {}",
+            ratios.join(", ")
+        );
     }
 }
