@@ -387,6 +387,10 @@ rapier_scene!(rapier_f32, rapier3d, f32);
 /// One engine's run of a scene.
 type Engine = fn(&Scene) -> Result<Measured, String>;
 
+/// The piles' names, which their further courses under `--seeds=N` extend with their seeds.
+const CUBE_PILE: &str = "1000 cubes dropped";
+const MIXED_PILE: &str = "1000 mixed shapes dropped";
+
 /// Under `--seeds=N`, the cube pile's `k`-th further course (`k` from 1) is dropped from seed
 /// `CUBE_SEEDS + k`: 3, 4, … (its own is seed 1).
 const CUBE_SEEDS: u64 = 2;
@@ -429,19 +433,19 @@ fn main() {
     let mut scenes: Vec<(String, Scene)> = vec![
         ("pyramid, base 20 (210 cubes)".into(), pyramid(20)),
         ("pyramid, base 40 (820 cubes)".into(), pyramid(40)),
-        ("1000 cubes dropped".into(), pile(1, cubes)),
-        ("1000 mixed shapes dropped".into(), pile(2, mixed_shape)),
+        (CUBE_PILE.into(), pile(1, cubes)),
+        (MIXED_PILE.into(), pile(2, mixed_shape)),
         ("tower of 100 cubes of 2 m".into(), tower()),
         ("bin of 300 cubes of 10 cm".into(), bin()),
     ];
     for k in 1..courses {
         let (cube_seed, mixed_seed) = (CUBE_SEEDS + k, MIXED_SEEDS + k);
         scenes.push((
-            format!("1000 cubes dropped, seed {cube_seed}"),
+            format!("{CUBE_PILE}, seed {cube_seed}"),
             pile(cube_seed, cubes),
         ));
         scenes.push((
-            format!("1000 mixed shapes dropped, seed {mixed_seed}"),
+            format!("{MIXED_PILE}, seed {mixed_seed}"),
             pile(mixed_seed, mixed_shape),
         ));
     }
@@ -486,7 +490,7 @@ fn main() {
                         m.fastest,
                         m.penetration
                     );
-                    if let Some(pile) = ["1000 cubes dropped", "1000 mixed shapes dropped"]
+                    if let Some(pile) = [CUBE_PILE, MIXED_PILE]
                         .into_iter()
                         .find(|pile| name.starts_with(pile))
                     {
@@ -502,11 +506,18 @@ fn main() {
     }
 }
 
-/// Under `--seeds=N`: each pile's median step per engine over its courses (the median of
-/// the courses' medians — the upper middle one for an even count — with their range), and each course's ratio of Tatami's defaults to
-/// rapier3d-f64 — one course's median reads how soon that course settles as much as the
-/// engine.
+/// Under `--seeds=N`: each pile's median step per engine over its courses (the median of the
+/// courses' medians, the upper middle one for an even count, with their range), and each
+/// course's ratio of Tatami's defaults to rapier3d-f64: one course's median reads how soon
+/// that course settles as much as the engine.
 fn print_over_courses(piles: &[(&str, &str, f64)]) {
+    let steps_of = |pile: &str, engine: &str| -> Vec<f64> {
+        piles
+            .iter()
+            .filter(|(p, e, _)| (*p, *e) == (pile, engine))
+            .map(|(_, _, step)| *step)
+            .collect()
+    };
     println!();
     println!("| pile | engine | courses | median step (ms) | range (ms) |");
     println!("|---|---|---:|---:|---|");
@@ -516,29 +527,20 @@ fn print_over_courses(piles: &[(&str, &str, f64)]) {
             continue;
         }
         seen.push((pile, engine));
-        let mut steps: Vec<f64> = piles
-            .iter()
-            .filter(|(p, e, _)| (*p, *e) == (pile, engine))
-            .map(|(_, _, step)| *step)
-            .collect();
-        steps.sort_by(f64::total_cmp);
+        let steps = steps_of(pile, engine);
+        let least = steps.iter().copied().fold(f64::INFINITY, f64::min);
+        let most = steps.iter().copied().fold(0.0, f64::max);
+        let count = steps.len();
         println!(
-            "| {pile} | {engine} | {} | {:.3} | {:.3}–{:.3} |",
-            steps.len(),
-            median(steps.clone()),
-            steps[0],
-            steps[steps.len() - 1]
+            "| {pile} | {engine} | {count} | {:.3} | {least:.3}–{most:.3} |",
+            median(steps)
         );
     }
-    for pile in ["1000 cubes dropped", "1000 mixed shapes dropped"] {
-        let of = |engine: &str| -> Vec<f64> {
-            piles
-                .iter()
-                .filter(|(p, e, _)| (*p, *e) == (pile, engine))
-                .map(|(_, _, step)| *step)
-                .collect()
-        };
-        let (tatami, rapier) = (of("tatami defaults"), of("rapier3d-f64"));
+    for pile in [CUBE_PILE, MIXED_PILE] {
+        let (tatami, rapier) = (
+            steps_of(pile, "tatami defaults"),
+            steps_of(pile, "rapier3d-f64"),
+        );
         if tatami.is_empty() || tatami.len() != rapier.len() {
             continue;
         }
