@@ -12,14 +12,19 @@
 //! and the quality: for pyramids and the tower the largest displacement of any body, for piles the
 //! fastest body and the deepest floor penetration at the end, each the median over the last
 //! second's steps of that step's largest (one step's snapshot read a single late topple or
-//! impact, and moved by 10× between runs that differed in rounding only).
+//! impact, and moved by 10× between runs that differed in rounding only); and for every scene
+//! when it came to rest: the end of the last step in which a body moved faster than 1 cm/s
+//! ("moving" if one still did at the end). A pile's median step falls in its settling, so
+//! when each engine's pile came to rest says whether a gap is the engine's cost per step or a
+//! longer settling.
 //!
 //! Run: `cargo bench -p tatami-benches --bench general_comparison` (a few minutes). Arguments
 //! after `--` keep only the scenes and engines whose names contain one of them, e.g.
 //! `-- pile tatami` for Tatami on both piles (for a profiler). With `--seeds=N` each pile is
 //! also dropped from `N − 1` further seeds, and a summary gives each engine's median over the
-//! courses and Tatami's ratio to rapier3d-f64 course by course: how soon one course settles
-//! moves a pile's median as much as the engines do (`-- --seeds=5 dropped`).
+//! courses and Tatami's ratio to rapier3d-f64 course by course, with when each came to rest:
+//! how soon one course settles moves a pile's median as much as the engines do
+//! (`-- --seeds=5 dropped`).
 
 use std::time::{Duration, Instant};
 
@@ -32,6 +37,8 @@ const DT: f64 = 1.0 / 60.0;
 const STEPS: usize = 600;
 /// The last steps, one second at `DT`, over which the end-of-run quality is taken.
 const END_STEPS: usize = 60;
+/// A scene is at rest once no dynamic body moves faster than this (m/s), 1 cm/s.
+const REST_SPEED: f64 = 0.01;
 
 /// A random orientation (a normalised random quaternion).
 fn random_rotation(random: &mut Random) -> UnitQuaternion<f64> {
@@ -148,6 +155,9 @@ struct Measured {
     moved: f64,
     fastest: f64,
     penetration: f64,
+    /// When the scene came to rest (s): the end of the last step in which a dynamic body
+    /// moved faster than [`REST_SPEED`]; `None` if one still did in the last step.
+    at_rest_from: Option<f64>,
 }
 
 /// A body's pose and speed as an engine reports it.
@@ -174,6 +184,7 @@ fn measure(
     let mut times = Vec::with_capacity(STEPS);
     let mut stages: [Vec<Duration>; 4] = Default::default();
     let (mut fastest, mut penetration) = (Vec::new(), Vec::new());
+    let mut last_moving = 0;
     for done in 1..=STEPS {
         let started = Instant::now();
         let split = step()?;
@@ -185,15 +196,19 @@ fn measure(
         for (a, b) in now.iter().zip(&start) {
             moved = moved.max((a.position - b.position).norm());
         }
+        let dynamic = || {
+            scene
+                .bodies
+                .iter()
+                .zip(&now)
+                .filter(|(desc, _)| !desc.fixed)
+        };
+        let fastest_now = dynamic().map(|(_, s)| s.speed).fold(0.0, f64::max);
+        if fastest_now > REST_SPEED {
+            last_moving = done;
+        }
         if done > STEPS - END_STEPS {
-            let dynamic = || {
-                scene
-                    .bodies
-                    .iter()
-                    .zip(&now)
-                    .filter(|(desc, _)| !desc.fixed)
-            };
-            fastest.push(dynamic().map(|(_, s)| s.speed).fold(0.0, f64::max));
+            fastest.push(fastest_now);
             penetration.push(
                 dynamic()
                     .map(|(desc, s)| -lowest(&desc.shape, &s.position, &s.rotation))
@@ -207,6 +222,7 @@ fn measure(
         moved,
         fastest: median(fastest),
         penetration: median(penetration),
+        at_rest_from: (last_moving < STEPS).then_some(last_moving as f64 * scene.dt),
     })
 }
 
@@ -466,12 +482,14 @@ fn main() {
     let engine_names: Vec<&str> = engines.iter().map(|(n, _)| *n).collect();
     println!(
         "| scene | engine | step (ms) | collision | contact set and rows | solve | rest | \
-         largest displacement (m) | fastest at the end (m/s) | deepest penetration (m) |"
+         largest displacement (m) | fastest at the end (m/s) | deepest penetration (m) | \
+         at rest from (s) |"
     );
-    println!("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     let ms = |d: Duration| d.as_secs_f64() * 1e3;
-    // Each pile's median step per engine and course, for the summary over courses.
-    let mut piles: Vec<(&str, &str, f64)> = Vec::new();
+    // Each pile's median step per engine and course, and when it came to rest, for the summary
+    // over courses.
+    let mut piles: Vec<Course> = Vec::new();
     for (name, scene) in scenes.iter().filter(|(n, _)| wanted(n, &scene_names)) {
         for (engine, run) in engines
             .into_iter()
@@ -480,7 +498,7 @@ fn main() {
             match run(scene) {
                 Ok(m) => {
                     println!(
-                        "| {name} | {engine} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.4} |",
+                        "| {name} | {engine} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.4} | {} |",
                         ms(m.step),
                         ms(m.stages[0]),
                         ms(m.stages[1]),
@@ -488,16 +506,22 @@ fn main() {
                         ms(m.stages[3]),
                         m.moved,
                         m.fastest,
-                        m.penetration
+                        m.penetration,
+                        rest_time(m.at_rest_from),
                     );
                     if let Some(pile) = [CUBE_PILE, MIXED_PILE]
                         .into_iter()
                         .find(|pile| name.starts_with(pile))
                     {
-                        piles.push((pile, engine, ms(m.step)));
+                        piles.push(Course {
+                            pile,
+                            engine,
+                            step: ms(m.step),
+                            at_rest_from: m.at_rest_from,
+                        });
                     }
                 }
-                Err(e) => println!("| {name} | {engine} | failed: {e} | | | | | | | |"),
+                Err(e) => println!("| {name} | {engine} | failed: {e} | | | | | | | | |"),
             }
         }
     }
@@ -506,28 +530,43 @@ fn main() {
     }
 }
 
+/// One engine's run of one course of a pile, for the summary over courses.
+struct Course<'a> {
+    pile: &'a str,
+    engine: &'a str,
+    /// The median step (ms).
+    step: f64,
+    /// See [`Measured::at_rest_from`].
+    at_rest_from: Option<f64>,
+}
+
+/// When a run came to rest, for the tables: seconds, or "moving" if it had not by the end.
+fn rest_time(at_rest_from: Option<f64>) -> String {
+    at_rest_from.map_or_else(|| "moving".to_owned(), |t| format!("{t:.1}"))
+}
+
 /// Under `--seeds=N`: each pile's median step per engine over its courses (the median of the
 /// courses' medians, the upper middle one for an even count, with their range), and each
-/// course's ratio of Tatami's defaults to rapier3d-f64: one course's median reads how soon
-/// that course settles as much as the engine.
-fn print_over_courses(piles: &[(&str, &str, f64)]) {
-    let steps_of = |pile: &str, engine: &str| -> Vec<f64> {
+/// course's ratio of Tatami's defaults to rapier3d-f64 with when each engine's course came to
+/// rest: one course's median reads how soon that course settles as much as the engine.
+fn print_over_courses(piles: &[Course<'_>]) {
+    let courses_of = |pile: &str, engine: &str| -> Vec<&Course<'_>> {
         piles
             .iter()
-            .filter(|(p, e, _)| (*p, *e) == (pile, engine))
-            .map(|(_, _, step)| *step)
+            .filter(|c| (c.pile, c.engine) == (pile, engine))
             .collect()
     };
     println!();
     println!("| pile | engine | courses | median step (ms) | range (ms) |");
     println!("|---|---|---:|---:|---|");
     let mut seen: Vec<(&str, &str)> = Vec::new();
-    for &(pile, engine, _) in piles {
+    for course in piles {
+        let (pile, engine) = (course.pile, course.engine);
         if seen.contains(&(pile, engine)) {
             continue;
         }
         seen.push((pile, engine));
-        let steps = steps_of(pile, engine);
+        let steps: Vec<f64> = courses_of(pile, engine).iter().map(|c| c.step).collect();
         let least = steps.iter().copied().fold(f64::INFINITY, f64::min);
         let most = steps.iter().copied().fold(0.0, f64::max);
         let count = steps.len();
@@ -538,8 +577,8 @@ fn print_over_courses(piles: &[(&str, &str, f64)]) {
     }
     for pile in [CUBE_PILE, MIXED_PILE] {
         let (tatami, rapier) = (
-            steps_of(pile, "tatami defaults"),
-            steps_of(pile, "rapier3d-f64"),
+            courses_of(pile, "tatami defaults"),
+            courses_of(pile, "rapier3d-f64"),
         );
         if tatami.is_empty() || tatami.len() != rapier.len() {
             continue;
@@ -547,7 +586,14 @@ fn print_over_courses(piles: &[(&str, &str, f64)]) {
         let ratios: Vec<String> = tatami
             .iter()
             .zip(&rapier)
-            .map(|(t, r)| format!("{:.2}×", t / r))
+            .map(|(t, r)| {
+                format!(
+                    "{:.2}× (at rest from {} against {} s)",
+                    t.step / r.step,
+                    rest_time(t.at_rest_from),
+                    rest_time(r.at_rest_from)
+                )
+            })
             .collect();
         println!(
             "\n{pile}: Tatami's defaults against rapier3d-f64, course by course: {}",
