@@ -540,9 +540,17 @@ struct Course<'a> {
     at_rest_from: Option<f64>,
 }
 
-/// When a run came to rest, for the tables: seconds, or "moving" if it had not by the end.
+/// When a run came to rest, for the table: seconds, or "moving" if it had not by the end.
 fn rest_time(at_rest_from: Option<f64>) -> String {
     at_rest_from.map_or_else(|| "moving".to_owned(), |t| format!("{t:.1}"))
+}
+
+/// When a run came to rest, in words: "at rest from 8.4 s", or "still moving".
+fn settled(at_rest_from: Option<f64>) -> String {
+    at_rest_from.map_or_else(
+        || "still moving".to_owned(),
+        |t| format!("at rest from {t:.1} s"),
+    )
 }
 
 /// Under `--seeds=N`: each pile's median step per engine over its courses (the median of the
@@ -588,10 +596,10 @@ fn print_over_courses(piles: &[Course<'_>]) {
             .zip(&rapier)
             .map(|(t, r)| {
                 format!(
-                    "{:.2}× (at rest from {} against {} s)",
+                    "{:.2}× (Tatami {}, Rapier {})",
                     t.step / r.step,
-                    rest_time(t.at_rest_from),
-                    rest_time(r.at_rest_from)
+                    settled(t.at_rest_from),
+                    settled(r.at_rest_from)
                 )
             })
             .collect();
