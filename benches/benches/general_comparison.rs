@@ -13,8 +13,8 @@
 //! fastest body and the deepest floor penetration at the end, each the median over the last
 //! second's steps of that step's largest (one step's snapshot read a single late topple or
 //! impact, and moved by 10× between runs that differed in rounding only); and for every scene
-//! when it came to rest: the end of the last step in which a body moved faster than 1 cm/s
-//! ("moving" if one still did at the end). A pile's median step falls in its settling, so
+//! when it came to rest: the end of the last step in which a body's centre moved faster than
+//! 1 cm/s ("moving" if one still did at the end). A pile's median step falls in its settling, so
 //! when each engine's pile came to rest says whether a gap is the engine's cost per step or a
 //! longer settling.
 //!
@@ -37,7 +37,7 @@ const DT: f64 = 1.0 / 60.0;
 const STEPS: usize = 600;
 /// The last steps, one second at `DT`, over which the end-of-run quality is taken.
 const END_STEPS: usize = 60;
-/// A scene is at rest once no dynamic body moves faster than this (m/s), 1 cm/s.
+/// A scene is at rest once no dynamic body's centre moves faster than this (m/s), 1 cm/s.
 const REST_SPEED: f64 = 0.01;
 
 /// A random orientation (a normalised random quaternion).
@@ -155,8 +155,8 @@ struct Measured {
     moved: f64,
     fastest: f64,
     penetration: f64,
-    /// When the scene came to rest (s): the end of the last step in which a dynamic body
-    /// moved faster than [`REST_SPEED`]; `None` if one still did in the last step.
+    /// When the scene came to rest (s): the end of the last step in which a dynamic body's
+    /// centre moved faster than [`REST_SPEED`]; `None` if one still did in the last step.
     at_rest_from: Option<f64>,
 }
 
