@@ -7,6 +7,12 @@
 //! Tatami also runs with sleeping on (islands at rest skip the step; off by default, and off in
 //! Rapier here).
 //!
+//! The engines chosen for a scene are stepped in lockstep, each engine's step k before any
+//! engine's step k + 1 (which engine goes first changes every step), so that both engines of a
+//! ratio meet the same minutes of this shared, noisy machine: run one after the other, a
+//! minute's speed moved one engine's medians by 15–30% and not the other's. Stepped in turn,
+//! the engines share the caches too, so each step reads a little slower than alone.
+//!
 //! For each engine: the median whole step, the median of each stage — collision, contact set and
 //! rows, solve, and the rest (position correction and integration for Tatami; Rapier's update) —
 //! and the quality: for pyramids and the tower the largest displacement of any body, for piles the
@@ -26,6 +32,8 @@
 //! how soon one course settles moves a pile's median as much as the engines do
 //! (`-- --seeds=5 dropped`).
 
+use std::cell::RefCell;
+use std::rc::Rc;
 use std::time::{Duration, Instant};
 
 use nalgebra::{Point3, Quaternion, UnitQuaternion, Vector3};
@@ -173,65 +181,115 @@ fn median<T: PartialOrd + Copy + Default>(mut values: Vec<T>) -> T {
     values.get(values.len() / 2).copied().unwrap_or_default()
 }
 
-/// Steps `step` (which returns its stage times) 600 times and measures.
-fn measure(
-    scene: &Scene,
-    mut step: impl FnMut() -> Result<Stages, String>,
-    states: impl Fn() -> Vec<State>,
-) -> Result<Measured, String> {
-    let start = states();
-    let mut moved: f64 = 0.0;
-    let mut times = Vec::with_capacity(STEPS);
-    let mut stages: [Vec<Duration>; 4] = Default::default();
-    let (mut fastest, mut penetration) = (Vec::new(), Vec::new());
-    let mut last_moving = 0;
-    for done in 1..=STEPS {
-        let started = Instant::now();
-        let split = step()?;
-        times.push(started.elapsed());
-        for (list, time) in stages.iter_mut().zip(split) {
+/// One engine's world of a scene, stepped a step at a time: `step` returns the step's stage
+/// times, `states` every body's pose and speed in the scene's order.
+struct Run {
+    step: Box<dyn FnMut() -> Result<Stages, String>>,
+    states: Box<dyn Fn() -> Vec<State>>,
+}
+
+/// What one engine's run has measured so far.
+struct Tally {
+    start: Vec<State>,
+    moved: f64,
+    times: Vec<Duration>,
+    stages: [Vec<Duration>; 4],
+    fastest: Vec<f64>,
+    penetration: Vec<f64>,
+    last_moving: usize,
+}
+
+impl Tally {
+    fn new(start: Vec<State>) -> Self {
+        Self {
+            start,
+            moved: 0.0,
+            times: Vec::with_capacity(STEPS),
+            stages: Default::default(),
+            fastest: Vec::new(),
+            penetration: Vec::new(),
+            last_moving: 0,
+        }
+    }
+
+    /// Step `done` (from 1) took `time`, in stages `split`, and left the bodies at `now`.
+    fn record(&mut self, scene: &Scene, done: usize, time: Duration, split: Stages, now: &[State]) {
+        self.times.push(time);
+        for (list, time) in self.stages.iter_mut().zip(split) {
             list.push(time);
         }
-        let now = states();
-        for (a, b) in now.iter().zip(&start) {
-            moved = moved.max((a.position - b.position).norm());
+        for (a, b) in now.iter().zip(&self.start) {
+            self.moved = self.moved.max((a.position - b.position).norm());
         }
-        let dynamic = || {
-            scene
-                .bodies
-                .iter()
-                .zip(&now)
-                .filter(|(desc, _)| !desc.fixed)
-        };
+        let dynamic = || scene.bodies.iter().zip(now).filter(|(desc, _)| !desc.fixed);
         let fastest_now = dynamic().map(|(_, s)| s.speed).fold(0.0, f64::max);
         if fastest_now > REST_SPEED {
-            last_moving = done;
+            self.last_moving = done;
         }
         if done > STEPS - END_STEPS {
-            fastest.push(fastest_now);
-            penetration.push(
+            self.fastest.push(fastest_now);
+            self.penetration.push(
                 dynamic()
                     .map(|(desc, s)| -lowest(&desc.shape, &s.position, &s.rotation))
                     .fold(0.0, f64::max),
             );
         }
     }
-    Ok(Measured {
-        step: median(times),
-        stages: stages.map(median),
-        moved,
-        fastest: median(fastest),
-        penetration: median(penetration),
-        at_rest_from: (last_moving < STEPS).then_some(last_moving as f64 * scene.dt),
-    })
+
+    fn measured(self, scene: &Scene) -> Measured {
+        Measured {
+            step: median(self.times),
+            stages: self.stages.map(median),
+            moved: self.moved,
+            fastest: median(self.fastest),
+            penetration: median(self.penetration),
+            at_rest_from: (self.last_moving < STEPS).then_some(self.last_moving as f64 * scene.dt),
+        }
+    }
 }
 
-fn tatami(scene: &Scene) -> Result<Measured, String> {
+/// Steps every run of `scene` 600 times in lockstep — step k of each engine, the first of
+/// them taking turns, before step k + 1 of any — and measures each. On this shared, noisy
+/// machine a minute's speed moves a run's medians by 15–30%; run one after the other, two
+/// engines met different minutes, stepped in turn they meet the same ones, so their ratio is
+/// read under like conditions. A run that fails is reported and stepped no further.
+fn run_together(scene: &Scene, runs: Vec<Result<Run, String>>) -> Vec<Result<Measured, String>> {
+    let mut runs: Vec<Result<(Run, Tally), String>> = runs
+        .into_iter()
+        .map(|run| {
+            run.map(|run| {
+                let start = (run.states)();
+                (run, Tally::new(start))
+            })
+        })
+        .collect();
+    let count = runs.len();
+    for done in 1..=STEPS {
+        for turn in 0..count {
+            let slot = &mut runs[(done + turn) % count];
+            let Ok((run, tally)) = slot else { continue };
+            let started = Instant::now();
+            match (run.step)() {
+                Ok(split) => {
+                    let time = started.elapsed();
+                    let now = (run.states)();
+                    tally.record(scene, done, time, split, &now);
+                }
+                Err(e) => *slot = Err(e),
+            }
+        }
+    }
+    runs.into_iter()
+        .map(|run| run.map(|(_, tally)| tally.measured(scene)))
+        .collect()
+}
+
+fn tatami(scene: &Scene) -> Result<Run, String> {
     run_tatami(scene, scene.settings)
 }
 
 /// Tatami's defaults with sleeping on (the `--` filter `sleeping` picks it alone).
-fn tatami_sleeping(scene: &Scene) -> Result<Measured, String> {
+fn tatami_sleeping(scene: &Scene) -> Result<Run, String> {
     let settings = WorldSettings {
         sleeping: tatami_world::Sleeping::on(),
         ..scene.settings
@@ -239,17 +297,19 @@ fn tatami_sleeping(scene: &Scene) -> Result<Measured, String> {
     run_tatami(scene, settings)
 }
 
-fn run_tatami(scene: &Scene, settings: WorldSettings) -> Result<Measured, String> {
+fn run_tatami(scene: &Scene, settings: WorldSettings) -> Result<Run, String> {
     let mut world = scene.world().map_err(|e| e.to_string())?;
     world.set_settings(settings).map_err(|e| e.to_string())?;
-    let world = std::cell::RefCell::new(world);
-    let step = || {
-        let mut world = world.borrow_mut();
-        world.step(scene.dt).map_err(|e| e.to_string())?;
+    let world = Rc::new(RefCell::new(world));
+    let dt = scene.dt;
+    let stepped = Rc::clone(&world);
+    let step = move || {
+        let mut world = stepped.borrow_mut();
+        world.step(dt).map_err(|e| e.to_string())?;
         let t = world.timings();
         Ok([t.collision, t.setup, t.solve, t.correction + t.integrate])
     };
-    let states = || {
+    let states = move || {
         world
             .borrow()
             .bodies()
@@ -261,13 +321,16 @@ fn run_tatami(scene: &Scene, settings: WorldSettings) -> Result<Measured, String
             })
             .collect()
     };
-    measure(scene, step, states)
+    Ok(Run {
+        step: Box::new(step),
+        states: Box::new(states),
+    })
 }
 
 /// The scene in one of Rapier's two builds (the crates differ only in `Real`).
 macro_rules! rapier_scene {
     ($name:ident, $rapier:ident, $real:ty) => {
-        fn $name(scene: &Scene) -> Result<Measured, String> {
+        fn $name(scene: &Scene) -> Result<Run, String> {
             use $rapier::prelude::*;
             let v = |x: f64, y: f64, z: f64| Vector::new(x as $real, y as $real, z as $real);
             let mut bodies = RigidBodySet::new();
@@ -328,7 +391,7 @@ macro_rules! rapier_scene {
             let gravity = v(g.x, g.y, g.z);
             let mut pipeline = PhysicsPipeline::new();
             pipeline.counters.enable();
-            let world = std::cell::RefCell::new((
+            let world = Rc::new(RefCell::new((
                 bodies,
                 colliders,
                 pipeline,
@@ -339,9 +402,10 @@ macro_rules! rapier_scene {
                 MultibodyJointSet::new(),
                 CCDSolver::new(),
                 SoftBodySet::new(),
-            ));
-            let step = || {
-                let w = &mut *world.borrow_mut();
+            )));
+            let stepped = Rc::clone(&world);
+            let step = move || {
+                let w = &mut *stepped.borrow_mut();
                 w.2.step(
                     gravity,
                     &parameters,
@@ -372,7 +436,7 @@ macro_rules! rapier_scene {
                     ms(rest.max(0.0)),
                 ])
             };
-            let states = || {
+            let states = move || {
                 let w = world.borrow();
                 handles
                     .iter()
@@ -392,7 +456,10 @@ macro_rules! rapier_scene {
                     })
                     .collect()
             };
-            measure(scene, step, states)
+            Ok(Run {
+                step: Box::new(step),
+                states: Box::new(states),
+            })
         }
     };
 }
@@ -400,8 +467,8 @@ macro_rules! rapier_scene {
 rapier_scene!(rapier_f64, rapier3d_f64, f64);
 rapier_scene!(rapier_f32, rapier3d, f32);
 
-/// One engine's run of a scene.
-type Engine = fn(&Scene) -> Result<Measured, String>;
+/// One engine's world of a scene, set up to be stepped.
+type Engine = fn(&Scene) -> Result<Run, String>;
 
 /// The piles' names, which their further courses under `--seeds=N` extend with their seeds.
 const CUBE_PILE: &str = "1000 cubes dropped";
@@ -491,11 +558,13 @@ fn main() {
     // over courses.
     let mut piles: Vec<Course> = Vec::new();
     for (name, scene) in scenes.iter().filter(|(n, _)| wanted(n, &scene_names)) {
-        for (engine, run) in engines
+        let chosen: Vec<(&str, Engine)> = engines
             .into_iter()
             .filter(|(n, _)| wanted(n, &engine_names))
-        {
-            match run(scene) {
+            .collect();
+        let runs = chosen.iter().map(|(_, build)| build(scene)).collect();
+        for ((engine, _), measured) in chosen.iter().zip(run_together(scene, runs)) {
+            match measured {
                 Ok(m) => {
                     println!(
                         "| {name} | {engine} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.4} | {} |",
