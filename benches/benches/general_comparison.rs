@@ -11,7 +11,9 @@
 //! engine's step k + 1 (which engine goes first changes every step), so that both engines of a
 //! ratio meet the same minutes of this shared, noisy machine: run one after the other, a
 //! minute's speed moved one engine's medians by 15–30% and not the other's. Stepped in turn,
-//! the engines share the caches too, so each step reads a little slower than alone.
+//! the engines share the caches too, so each step reads slower than alone (the small scenes'
+//! the most: the 210-cube pyramid's by half); compare ratios, not one engine's times across
+//! runs with different engines chosen.
 //!
 //! For each engine: the median whole step, the median of each stage — collision, contact set and
 //! rows, solve, and the rest (position correction and integration for Tatami; Rapier's update) —
@@ -249,10 +251,8 @@ impl Tally {
 }
 
 /// Steps every run of `scene` 600 times in lockstep — step k of each engine, the first of
-/// them taking turns, before step k + 1 of any — and measures each. On this shared, noisy
-/// machine a minute's speed moves a run's medians by 15–30%; run one after the other, two
-/// engines met different minutes, stepped in turn they meet the same ones, so their ratio is
-/// read under like conditions. A run that fails is reported and stepped no further.
+/// them taking turns, before step k + 1 of any (why: the module doc) — and measures each. A
+/// run that fails is reported and stepped no further.
 fn run_together(scene: &Scene, runs: Vec<Result<Run, String>>) -> Vec<Result<Measured, String>> {
     let mut runs: Vec<Result<(Run, Tally), String>> = runs
         .into_iter()
