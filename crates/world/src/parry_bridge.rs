@@ -17,7 +17,7 @@ use parry3d_f64::query::{
     self, ContactManifold, DefaultQueryDispatcher, PersistentQueryDispatcher, ShapeCastOptions,
     ShapeCastStatus, cast_shapes,
 };
-use parry3d_f64::shape::{ConvexPolyhedron, Cuboid, SharedShape, SupportMap};
+use parry3d_f64::shape::{Ball, ConvexPolyhedron, Cuboid, Cylinder, SharedShape, SupportMap};
 
 use crate::HullMesh;
 use crate::apart::{AxisFrame, AxisGap};
@@ -48,6 +48,11 @@ pub(crate) struct Collider {
     local: Pose,
     /// A box's or a hull's faces and edges, for [`sat::separating_axis`].
     polytope: Option<Polytope>,
+    /// A copy of the shape when it is a box, a ball or a cylinder: its bounding box, reach
+    /// and box–box normal are then found from the collider alone, without reading the shape
+    /// behind its pointer (for the 1000-cube pile's boxes a cache miss each: the bounding boxes
+    /// took 0.12–0.14 ms a step while it settles, 0.03 ms from the copy).
+    primitive: Primitive,
     /// A cylinder as a core rounded by [`ROUNDING`] of its size: the shape its contact normal
     /// against a polyhedron or a cylinder is found on (see [`contact_normal`]).
     rounded: Option<SharedShape>,
@@ -61,6 +66,30 @@ pub(crate) struct Collider {
 /// without EPA (16% of the mixed pile's samples when every overlapping pair ran it, on a
 /// new EPA each time; see [`gjk_then_epa`]).
 const ROUNDING: f64 = 0.05;
+
+/// A shape small enough to keep a copy of inline ([`Collider`]'s `primitive`).
+#[derive(Clone, Copy)]
+enum Primitive {
+    Cuboid(Cuboid),
+    Ball(Ball),
+    Cylinder(Cylinder),
+    /// A hull: its points are on the heap either way.
+    Other,
+}
+
+impl Primitive {
+    fn of(shape: &SharedShape) -> Self {
+        if let Some(cuboid) = shape.as_cuboid() {
+            Self::Cuboid(*cuboid)
+        } else if let Some(ball) = shape.as_ball() {
+            Self::Ball(*ball)
+        } else if let Some(cylinder) = shape.as_cylinder() {
+            Self::Cylinder(*cylinder)
+        } else {
+            Self::Other
+        }
+    }
+}
 
 impl std::fmt::Debug for Collider {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -105,6 +134,7 @@ impl Collider {
             None => shape.as_convex_polyhedron().and_then(polytope),
         };
         Some(Self {
+            primitive: Primitive::of(&shape),
             shape,
             local,
             polytope,
@@ -119,7 +149,7 @@ impl Collider {
     pub(crate) fn aabb(&self, pose: &Pose, margin: f64) -> (Vector3<f64>, Vector3<f64>) {
         let placed = *pose * self.local;
         let grow = Vector3::repeat(margin);
-        if let Some(cylinder) = self.shape.as_cylinder() {
+        if let Primitive::Cylinder(cylinder) = &self.primitive {
             // parry's cylinders stand along y.
             let axis = from_glam(placed.rotation * Vector::Y);
             let reach = axis.map(|u| {
@@ -128,7 +158,11 @@ impl Collider {
             let centre = from_glam(placed.translation);
             return (centre - reach - grow, centre + reach + grow);
         }
-        let aabb = self.shape.compute_aabb(&placed);
+        let aabb = match &self.primitive {
+            Primitive::Cuboid(cuboid) => cuboid.aabb(&placed),
+            Primitive::Ball(ball) => ball.aabb(&placed),
+            Primitive::Cylinder(_) | Primitive::Other => self.shape.compute_aabb(&placed),
+        };
         (from_glam(aabb.mins) - grow, from_glam(aabb.maxs) + grow)
     }
 
@@ -168,13 +202,15 @@ impl Collider {
     /// plane's offset, `max x · direction` over its points. `None` for a shape without a
     /// support function (none of the world's).
     pub(crate) fn reach_along(&self, pose: &Pose, direction: &Vector3<f64>) -> Option<f64> {
-        let support = self.shape.as_support_map()?;
         let towards = to_glam(direction);
-        Some(
-            support
-                .support_point(&(*pose * self.local), towards)
-                .dot(towards),
-        )
+        let placed = *pose * self.local;
+        let point = match &self.primitive {
+            Primitive::Cuboid(cuboid) => cuboid.support_point(&placed, towards),
+            Primitive::Ball(ball) => ball.support_point(&placed, towards),
+            Primitive::Cylinder(cylinder) => cylinder.support_point(&placed, towards),
+            Primitive::Other => self.shape.as_support_map()?.support_point(&placed, towards),
+        };
+        Some(point.dot(towards))
     }
 
     /// Whether `direction` (in the shape's frame) leans off both a cylinder's axis and its
@@ -386,7 +422,7 @@ pub(crate) fn contact_normal(
             ..g
         })
     };
-    if let (Some(box_b), Some(box_a)) = (b.shape.as_cuboid(), a.shape.as_cuboid()) {
+    if let (Primitive::Cuboid(box_b), Primitive::Cuboid(box_a)) = (&b.primitive, &a.primitive) {
         return box_sat::cuboid_normal(box_b, box_a, &pos_ba, prediction)
             .map(|local| from_glam(pose_b.rotation * local).normalize())
             .map_err(of_a);
