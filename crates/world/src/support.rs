@@ -741,11 +741,17 @@ enum Side {
 impl Surface {
     fn fit(frame: &ContactFrame, feature: &Feature, names: VertexIds, side: Side) -> Option<Self> {
         let points = &feature.points;
-        let plane: Points<Point2<f64>> = points.iter().map(|f| frame.to_plane(&f.point)).collect();
-        let ring = feature.ring.then(|| ring_kind(&plane)).flatten();
-        let (outline, kind, ids, hull) = match ring {
+        let on_plane = |points: &[FeaturePoint]| -> Points<Point2<f64>> {
+            points.iter().map(|f| frame.to_plane(&f.point)).collect()
+        };
+        // The points on the plane become the outline of a ring as they stand; `plane` keeps
+        // them in the feature's order only where the outline is a hull of them (a ring's are
+        // projected again in the one branch below that reads them in that order, rather than
+        // copied for every face).
+        let mut outline = on_plane(points);
+        let ring = feature.ring.then(|| ring_kind(&outline)).flatten();
+        let (kind, ids, hull, plane) = match ring {
             Some((kind, reversed)) => {
-                let mut outline = plane.clone();
                 let mut ids: Points<u32> = match names {
                     VertexIds::Named => points.iter().map(|f| f.id).collect(),
                     VertexIds::Unnamed => Points::new(),
@@ -754,10 +760,11 @@ impl Surface {
                     outline.reverse();
                     ids.reverse();
                 }
-                (outline, kind, ids, None)
+                (kind, ids, None, None)
             }
             None => {
-                let hull = ConvexPolygon::from_points(&plane).ok()?;
+                let hull = ConvexPolygon::from_points(&outline).ok()?;
+                let plane = std::mem::replace(&mut outline, Points::from_slice(hull.vertices()));
                 // The hull's vertices are copies of its input points.
                 let ids = match names {
                     VertexIds::Named => hull
@@ -772,12 +779,7 @@ impl Surface {
                         .collect(),
                     VertexIds::Unnamed => Points::new(),
                 };
-                (
-                    Points::from_slice(hull.vertices()),
-                    hull.kind(),
-                    ids,
-                    Some(hull),
-                )
+                (hull.kind(), ids, Some(hull), Some(plane))
             }
         };
         let height = |f: &FeaturePoint| (f.point - frame.origin).dot(&frame.normal);
@@ -802,12 +804,17 @@ impl Surface {
             // An edge: the height runs linearly between its ends (the least-squares fit's
             // answer, without its normal equations).
             (PolygonKind::Segment, None, [p0, p1]) => {
-                let (q0, q1) = (plane[0], plane[1]);
+                // A ring of two points is never reversed: its outline is its points in order.
+                let (q0, q1) = match &plane {
+                    Some(plane) => (plane[0], plane[1]),
+                    None => (outline[0], outline[1]),
+                };
                 let along = q1 - q0;
                 let slope = along * ((height(p1) - height(p0)) / along.norm_squared());
                 Vector3::new(height(p0) - slope.dot(&q0.coords), slope.x, slope.y)
             }
             _ => {
+                let plane = plane.unwrap_or_else(|| on_plane(points));
                 // Heights grow towards A: A's points past the plane lie below it, B's above.
                 let towards_other = match side {
                     Side::A => -1.0,
