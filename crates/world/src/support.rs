@@ -741,14 +741,13 @@ enum Side {
 impl Surface {
     fn fit(frame: &ContactFrame, feature: &Feature, names: VertexIds, side: Side) -> Option<Self> {
         let points = &feature.points;
-        let on_plane = |points: &[FeaturePoint]| -> Points<Point2<f64>> {
-            points.iter().map(|f| frame.to_plane(&f.point)).collect()
-        };
-        // The points on the plane become the outline of a ring as they stand; `plane` keeps
-        // them in the feature's order only where the outline is a hull of them (a ring's are
-        // projected again in the one branch below that reads them in that order, rather than
-        // copied for every face).
-        let mut outline = on_plane(points);
+        let on_plane =
+            || -> Points<Point2<f64>> { points.iter().map(|f| frame.to_plane(&f.point)).collect() };
+        // A ring's points on the plane are its outline as they stand. `plane`, the points in
+        // the feature's order, is kept apart only where the outline is their hull; the one
+        // branch below that reads a ring's in that order projects them again rather than every
+        // face copying them.
+        let mut outline = on_plane();
         let ring = feature.ring.then(|| ring_kind(&outline)).flatten();
         let (kind, ids, hull, plane) = match ring {
             Some((kind, reversed)) => {
@@ -814,7 +813,7 @@ impl Surface {
                 Vector3::new(height(p0) - slope.dot(&q0.coords), slope.x, slope.y)
             }
             _ => {
-                let plane = plane.unwrap_or_else(|| on_plane(points));
+                let plane = plane.unwrap_or_else(on_plane);
                 // Heights grow towards A: A's points past the plane lie below it, B's above.
                 let towards_other = match side {
                     Side::A => -1.0,
