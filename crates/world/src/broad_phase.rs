@@ -21,6 +21,8 @@
 
 use nalgebra::Vector3;
 
+use crate::nearly_sorted::sort_nearly_in_order_by;
+
 /// A box as the sweep reads it: its bounds, whether its body is static, and its index.
 #[derive(Debug, Clone, Copy)]
 struct Swept {
@@ -219,8 +221,9 @@ impl SweepAndPrune {
             self.order.clear();
             self.order.extend(0..boxes.len());
         }
-        self.order
-            .sort_by(|&i, &j| boxes[i].0[axis].total_cmp(&boxes[j].0[axis]));
+        sort_nearly_in_order_by(&mut self.order, |&i, &j| {
+            boxes[i].0[axis].total_cmp(&boxes[j].0[axis])
+        });
         let strips = self.strips(boxes, across);
         // Counting sort into the strips, in sweep order: count, then place.
         self.starts.clear();

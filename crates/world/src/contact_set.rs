@@ -41,6 +41,7 @@ use crate::broad_phase::order_by_pair;
 use crate::carry::{CarryBounds, Drift, carry};
 use crate::impact::Touchdown;
 use crate::load_estimate::LoadEstimate;
+use crate::nearly_sorted::sort_nearly_in_order_by;
 use crate::parallel;
 use crate::support::{FeatureId, FeatureIds, VertexIds};
 
@@ -970,7 +971,9 @@ fn sort_in_place<T>(
 ) -> bool {
     keys.clear();
     keys.extend(items.iter().enumerate().map(|(i, item)| (key(item), i)));
-    sort_nearly_in_order(keys);
+    // Distinct keys, nearly in order from last step: a settling pile's pairs each a few
+    // places off as their heights change.
+    sort_nearly_in_order_by(keys, Ord::cmp);
     let mut moved = false;
     for i in 0..items.len() {
         // The item for place `i` was at `keys[i].1`, unless an earlier swap moved it on: follow
@@ -986,37 +989,6 @@ fn sort_in_place<T>(
         }
     }
     moved
-}
-
-/// Most places an insertion sort may shift its items by in all, per item, before
-/// [`sort_nearly_in_order`] hands the rest to the standard sort.
-const MOST_SHIFTS_PER_KEY: usize = 4;
-
-/// Sorts `keys`, all of them distinct (so that any sort gives the same order), by insertion
-/// while they are nearly in order, else by the standard sort. A set sorted last step is nearly
-/// in order, each pair a few places off at most as its height changes, but not in long runs: the
-/// standard stable sort, which finds runs, sorted a settling pile's 2,100 keys in 0.07–0.09 ms
-/// a step on the calling thread (some 6% of its collision), where insertion shifts each key
-/// by its few places. Keys far from their places (pairs inserted at the end as a pile lands)
-/// run the insertion out of its [`MOST_SHIFTS_PER_KEY`] budget, and the standard sort takes
-/// over from where it stopped.
-fn sort_nearly_in_order(keys: &mut [(i64, usize)]) {
-    let mut shifts_left = MOST_SHIFTS_PER_KEY * keys.len();
-    for i in 1..keys.len() {
-        let key = keys[i];
-        let mut j = i;
-        while j > 0 && keys[j - 1] > key {
-            if shifts_left == 0 {
-                keys[j] = key;
-                keys.sort();
-                return;
-            }
-            keys[j] = keys[j - 1];
-            shifts_left -= 1;
-            j -= 1;
-        }
-        keys[j] = key;
-    }
 }
 
 /// Whether turning from `was` to `now` moves a point `length` from the centre by no more than
@@ -1386,39 +1358,6 @@ mod tests {
             inside > 5000 && outside > 5000,
             "{inside} within, {outside} not"
         );
-    }
-
-    /// Against the standard sort, on distinct keys in order, a few places off it (the
-    /// insertion's case), with a tail far from it (the insertion giving up part-way) and
-    /// shuffled.
-    #[test]
-    fn keys_nearly_in_order_sort_as_the_standard_sort_does() {
-        let mut random = crate::dropped::Random::new(11);
-        for len in [0, 1, 2, 3, 50, 2000] {
-            let in_order: Vec<(i64, usize)> = (0..len).map(|i| (i as i64 / 3, i)).collect();
-            let mut near = in_order.clone();
-            for _ in 0..len / 4 {
-                let i = random.between(0.0, len as f64) as usize;
-                let j = (i + random.between(0.0, 4.0) as usize).min(len - 1);
-                near.swap(i, j);
-            }
-            let mut with_tail = near.clone();
-            let tail = len / 10;
-            with_tail[len - tail..].reverse();
-            let mut shuffled = in_order.clone();
-            for i in (1..len).rev() {
-                shuffled.swap(i, random.between(0.0, (i + 1) as f64) as usize);
-            }
-            for (case, mut keys) in [
-                ("in order", in_order.clone()),
-                ("near", near),
-                ("tail", with_tail),
-                ("shuffled", shuffled),
-            ] {
-                sort_nearly_in_order(&mut keys);
-                assert_eq!(keys, in_order, "{len} keys, {case}");
-            }
-        }
     }
 
     /// Against the standard stable sort, on keys with many ties and orders near sorted and

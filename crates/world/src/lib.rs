@@ -35,6 +35,7 @@ pub mod heavy_top;
 mod held_handoff;
 mod impact;
 mod load_estimate;
+mod nearly_sorted;
 mod parallel;
 mod parry_bridge;
 mod press;
