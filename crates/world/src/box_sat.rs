@@ -367,7 +367,8 @@ mod tests {
             let faces = face_separations(&box1, &box2, &pos12);
             match quick_normal(&box1, &box2, &pos12, prediction, &faces) {
                 Some(Ok(_)) => quick += 1,
-                // An edge–edge gap is the quick test's own (within `CLOSE` of parry's, above).
+                // An edge–edge gap: for a pair overlapping along every face normal the quick
+                // test's own (within `CLOSE` of parry's, above), else parry's edge test's.
                 Some(Err(Some(AxisGap {
                     frame: AxisFrame::Space,
                     ..
