@@ -170,7 +170,9 @@ fn quick_normal(
     let overlapping = faces.iter().all(|&s| s < -close);
     let unblended = |faces: &[f64]| faces.iter().filter(|&&s| s >= -close).count() <= 1;
     let near_prediction = faces.iter().any(|&s| (s - prediction).abs() <= close);
-    if !(unblended(&faces[..3]) && unblended(&faces[3..])) || near_prediction {
+    // A NaN separation counts in none of these tests: parry decides, as it did before.
+    let finite = faces.iter().all(|s| s.is_finite());
+    if !(finite && unblended(&faces[..3]) && unblended(&faces[3..])) || near_prediction {
         return None;
     }
     // Edge pairs: the separation along the unnormalised axis L, divided once by |L|. Every
