@@ -64,6 +64,11 @@ pub(crate) struct LoadEstimate {
 }
 
 impl LoadEstimate {
+    /// The last estimate's guesses, one per contact.
+    pub(crate) fn last(&self) -> &[Load] {
+        &self.loads
+    }
+
     /// The normal impulse of each of `contacts` (highest first) that holds the dynamic `bodies`
     /// against `weight_per_mass` (gravity × dt) at rest, and where it acts; zeros without
     /// gravity.

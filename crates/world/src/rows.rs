@@ -16,12 +16,14 @@
 //! Without the helpers kept awake, a helper woken at the rows took longer to start than a
 //! pyramid's rows take.
 
+use std::ops::Range;
+
 use nalgebra::Vector3;
 use tatami_contact::{ContactError, ContactModel, ContactProjection, ContactRows, Turns, grip};
 use tatami_lcp::{Block, Row, SolverBody};
 
 use crate::contact_set::{ContactSet, PairRows};
-use crate::parallel::Warm;
+use crate::parallel::{self, Warm};
 use crate::press::Presses;
 use crate::{Body, ContactSettings, StepError, impact, tolerances};
 
@@ -69,12 +71,18 @@ pub(crate) struct RowInputs<'a> {
     /// `dt` (`dt` times the substeps squared), so that a press gives one force however the
     /// step is split ([`crate::substeps`]).
     pub grip_dt: f64,
+    /// Gravity × `dt`, when the rows are to be warm-started: the guess for pairs with nothing
+    /// stored is then made ahead, on a helper while the helpers' rows are copied in
+    /// ([`ContactSet::estimate_loads_ahead`]).
+    pub warm_start_weight: Option<Vector3<f64>>,
 }
 
 /// The runs of the rows stage, kept between steps so that they build without allocating.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct RowRuns {
     runs: Vec<Run>,
+    /// Each pair's blocks, in set order, as the runs are copied in.
+    blocks: Vec<Range<usize>>,
 }
 
 /// A run of pairs: where each one's blocks end, and the storage of a run a helper builds.
@@ -115,6 +123,7 @@ impl RunRecord {
             settings,
             dt,
             grip_dt,
+            ..
         } = inputs;
         let contact = pair.contact();
         let awake = !bodies[contact.body_a.0].asleep && !bodies[contact.body_b.0].asleep;
@@ -210,30 +219,45 @@ impl RowRuns {
                 record.build((index, pair), &mut apart, inputs);
             },
         );
-        let mut index = 0;
-        for (k, run) in runs.iter_mut().enumerate() {
-            if let Some((failed, source)) = run.record.failed.take() {
-                let contact = set
-                    .contacts()
-                    .nth(failed)
-                    .expect("a failed pair is in the set");
-                return Err(StepError::Contact {
-                    pair: crate::world::pair_name(inputs.bodies, contact),
-                    source,
-                });
+        // The first pair in the set's order whose rows could not be built.
+        if let Some((failed, source)) = runs.iter_mut().find_map(|run| run.record.failed.take()) {
+            let contact = set
+                .contacts()
+                .nth(failed)
+                .expect("a failed pair is in the set");
+            return Err(StepError::Contact {
+                pair: crate::world::pair_name(inputs.bodies, contact),
+                source,
+            });
+        }
+        let blocks = &mut self.blocks;
+        blocks.clear();
+        let mut append = || {
+            for (k, run) in runs.iter_mut().enumerate() {
+                let first_block = if k < straight {
+                    0
+                } else {
+                    let first_block = out.blocks.len();
+                    out.append(run.apart(solver_bodies).1);
+                    first_block
+                };
+                for &end in &run.record.ends {
+                    blocks.push(start..first_block + end);
+                    start = first_block + end;
+                }
             }
-            let first_block = if k < straight {
-                0
-            } else {
-                let first_block = out.blocks.len();
-                out.append(run.apart(solver_bodies).1);
-                first_block
-            };
-            for &end in &run.record.ends {
-                set.set_blocks(index, start..first_block + end);
-                start = first_block + end;
-                index += 1;
+        };
+        match inputs.warm_start_weight {
+            // The helper, done with its runs, makes the warm start's guess meanwhile.
+            Some(weight) if on_every_core => {
+                let model = inputs.model;
+                let ahead = || set.estimate_loads_ahead(model, solver_bodies, &weight);
+                parallel::join_beside(append, ahead);
             }
+            _ => append(),
+        }
+        for (index, blocks) in blocks.drain(..).enumerate() {
+            set.set_blocks(index, blocks);
         }
         Ok(())
     }
@@ -332,6 +356,7 @@ mod tests {
             settings: &settings,
             dt: 1.0 / 60.0,
             grip_dt: 1.0 / 60.0,
+            warm_start_weight: None,
         };
         let mut problem = Problem {
             bodies: solver,

@@ -7,10 +7,13 @@ use std::time::Duration;
 pub struct StepTimings {
     /// Broad phase, narrow phase and support polygons.
     pub collision: Duration,
-    /// Contact rows and solver bodies.
+    /// Contact rows and solver bodies, and the contact set's bookkeeping around the solve: its
+    /// warm start of the rows from the last step's impulses and its keeping of this step's (at
+    /// the solve's start and end, timed here so that collision and this stage are all the step
+    /// spends outside the solver).
     pub setup: Duration,
-    /// The velocity solve (with its warm start and shock pass), and the copy of the problem the
-    /// position pass works on.
+    /// The velocity solve (with its shock pass), and the copy of the problem the position pass
+    /// works on.
     pub solve: Duration,
     /// The position correction (split-impulse) pass; zero on steps where no contact is deeper
     /// than the slop. On a large problem the pass runs on a helper thread beside the velocity

@@ -1,7 +1,7 @@
 //! The world: bodies, settings, and the step `collision → rows → solve → integrate`.
 
 use std::ops::Range;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use nalgebra::Vector3;
 use tatami_contact::{Contact, ContactModel, ContactProjection, ContactRows};
@@ -322,17 +322,20 @@ impl World {
         let collided = Instant::now();
         self.build_problem(dt, warm)?;
         let built = Instant::now();
-        let (solved, warm) = self.solve_and_correct(dt)?;
+        let (solved, warm, warm_start) = self.solve_and_correct(dt)?;
         let corrected = Instant::now();
-        self.integrate(dt, warm)?;
+        let kept = self.integrate(dt, warm)?;
         self.fall_asleep(dt);
         let integrated = Instant::now();
+        // The contact set's warm start and its keeping of the solve's impulses are timed with
+        // the rows, though they run at the solve's start and end: the stages then split the
+        // step into collision, the contact set and its rows, and the solver.
         self.timings = StepTimings {
             collision: collided - start,
-            setup: built - collided,
-            solve: solved - built,
+            setup: built - collided + warm_start + kept,
+            solve: solved - built - warm_start,
             correction: corrected - solved,
-            integrate: integrated - corrected,
+            integrate: integrated - corrected - kept,
         };
         self.last_dt = dt;
         Ok(())
@@ -473,6 +476,9 @@ impl World {
             settings: &contact_settings,
             dt,
             grip_dt: dt * (self.substep_count * self.substep_count) as f64,
+            warm_start_weight: matches!(&self.settings.solver,
+                Solver::Pgs(params) if params.warm_start == WarmStart::On)
+            .then(|| self.gravity * dt),
         };
         let mut out = ContactRows::of(problem, &mut self.biases);
         (self.row_runs).build(&mut self.contact_set, &inputs, &mut out, warm)?;
@@ -496,12 +502,13 @@ impl World {
     /// solves its own copy of the problem ([`PositionPass`]) and shares nothing with the velocity
     /// solve, so on a large problem it runs on a helper thread meanwhile
     /// ([`parallel::join_beside`]); either way the answer is the same to the bit. Returns when
-    /// the velocity solve ended, for the stage timings, and, when the helper that ran the pass
-    /// is kept spinning for the bodies' motions ([`World::integrate`]), what keeps it so.
+    /// the velocity solve ended and how long its warm start took, for the stage timings, and,
+    /// when the helper that ran the pass is kept spinning for the bodies' motions
+    /// ([`World::integrate`]), what keeps it so.
     fn solve_and_correct(
         &mut self,
         dt: f64,
-    ) -> Result<(Instant, Option<parallel::Warm>), StepError> {
+    ) -> Result<(Instant, Option<parallel::Warm>, Duration), StepError> {
         self.direct_info = None;
         self.pseudo_velocities.clear();
         let correcting = self.biases.iter().any(|&bias| bias != 0.0);
@@ -513,6 +520,7 @@ impl World {
         // asleep by then and woken for it, it started the pass up to 2 ms late, and
         // at rest, where the pass takes about as long as the velocity solve, the step waited.
         let until_the_pass = (correcting && beside).then(parallel::Warm::start);
+        let warm_start = Instant::now();
         if let Solver::Pgs(params) = &self.settings.solver
             && params.warm_start == WarmStart::On
         {
@@ -545,6 +553,7 @@ impl World {
                 }
             }
         }
+        let warm_start = warm_start.elapsed();
         (self.bounce_guard).before_solve(
             (&self.problem, &self.bodies),
             (&self.gravity, dt),
@@ -616,7 +625,7 @@ impl World {
         if correcting {
             self.limit_pseudo_velocities();
         }
-        Ok((solved, for_motions))
+        Ok((solved, for_motions, warm_start))
     }
 
     /// The position pass's answer as pseudo-velocities. Pushes add up along chains of
@@ -659,8 +668,8 @@ impl World {
     /// too.
     ///
     /// Each body's motion is its own, so with `warm` helpers still spinning they take a share
-    /// of them.
-    fn integrate(&mut self, dt: f64, warm: Option<parallel::Warm>) -> Result<(), StepError> {
+    /// of them. Returns how long the contact set took to keep the impulses and end the step.
+    fn integrate(&mut self, dt: f64, warm: Option<parallel::Warm>) -> Result<Duration, StepError> {
         let corrections = &self.pseudo_velocities;
         let (bodies, solved) = (&self.bodies, &self.problem.bodies);
         self.motions.clear();
@@ -707,6 +716,7 @@ impl World {
             body.torque = Vector3::zeros();
             body.target = None;
         }
+        let kept = Instant::now();
         if let Solver::Pgs(params) = &self.settings.solver
             && params.warm_start == WarmStart::On
         {
@@ -721,7 +731,7 @@ impl World {
             }
         }
         self.contact_set.end_step();
-        Ok(())
+        Ok(kept.elapsed())
     }
 }
 
