@@ -333,9 +333,9 @@ impl World {
         self.timings = StepTimings {
             collision: collided - start,
             setup: built - collided + warm_start + kept,
-            solve: solved - built - warm_start,
+            solve: (solved - built).saturating_sub(warm_start),
             correction: corrected - solved,
-            integrate: integrated - corrected - kept,
+            integrate: (integrated - corrected).saturating_sub(kept),
         };
         self.last_dt = dt;
         Ok(())
