@@ -476,9 +476,7 @@ impl World {
             settings: &contact_settings,
             dt,
             grip_dt: dt * (self.substep_count * self.substep_count) as f64,
-            warm_start_weight: matches!(&self.settings.solver,
-                Solver::Pgs(params) if params.warm_start == WarmStart::On)
-            .then(|| self.gravity * dt),
+            warm_start_weight: warm_starts(&self.settings).then(|| self.gravity * dt),
         };
         let mut out = ContactRows::of(problem, &mut self.biases);
         (self.row_runs).build(&mut self.contact_set, &inputs, &mut out, warm)?;
@@ -521,9 +519,7 @@ impl World {
         // at rest, where the pass takes about as long as the velocity solve, the step waited.
         let until_the_pass = (correcting && beside).then(parallel::Warm::start);
         let warm_start = Instant::now();
-        if let Solver::Pgs(params) = &self.settings.solver
-            && params.warm_start == WarmStart::On
-        {
+        if warm_starts(&self.settings) {
             self.contact_set.warm_start(
                 self.settings.model,
                 &mut self.problem,
@@ -717,9 +713,7 @@ impl World {
             body.target = None;
         }
         let kept = Instant::now();
-        if let Solver::Pgs(params) = &self.settings.solver
-            && params.warm_start == WarmStart::On
-        {
+        if warm_starts(&self.settings) {
             let from_sweeps = warm_starts_from_the_sweeps(&self.settings)
                 && self.set_aside.impulses.len() == self.problem.rows.len();
             if from_sweeps {
@@ -982,6 +976,11 @@ impl SolvedState {
             }
         }
     }
+}
+
+/// Whether the step's rows start from the contact set's impulses: PGS with its warm start on.
+fn warm_starts(settings: &WorldSettings) -> bool {
+    matches!(&settings.solver, Solver::Pgs(params) if params.warm_start == WarmStart::On)
 }
 
 /// Whether the next step's warm start takes the velocity sweeps' impulses, set aside before the

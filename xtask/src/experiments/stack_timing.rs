@@ -129,7 +129,8 @@ struct Run {
     /// Solver call on the tower's first step, over repeats.
     median_ms: f64,
     p90_ms: f64,
-    /// The world's solve stage during the run (warm-start bookkeeping included).
+    /// The world's solve stage during the run (the contact set's warm start and keeping of
+    /// impulses are timed with the rows, `StepTimings::setup`, not here).
     run_median_ms: f64,
     top_drop: f64,
     top_shift: f64,
@@ -575,8 +576,8 @@ fn report(plan: &Plan, runs: &[Run], direct_stopped: &[(ContactModel, usize)]) -
     }
     text.push_str(
         "\nWith warm starting (impulses carried over from the previous step), solver time \
-         as measured during the run (median over its steps after a 10% warm-up, warm-start \
-         bookkeeping included):\n\n",
+         as measured during the run (median over its steps after a 10% warm-up; the contact \
+         set's warm start and keeping of impulses, timed with the rows, left out):\n\n",
     );
     text.push_str("| cubes | vertex ms in the run | patch ms | face ms | top drift v / p / f (m) | largest penetration v / p / f (mm) |\n");
     text.push_str("|---:|---:|---:|---:|---:|---:|\n");
