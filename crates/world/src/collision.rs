@@ -231,8 +231,7 @@ pub(crate) fn detect(
     let on_every_core = *last_computed >= PARALLEL_PASS;
     // A large set's rows are built on every core (`crate::rows`): when this pass keeps to the
     // calling thread, the pool's helpers are woken now, so they are awake by then.
-    let mut warm =
-        (!on_every_core && rows::worth_waking(set.contacts().len())).then(parallel::Warm::start);
+    let mut warm = (!on_every_core && rows::worth_waking(set)).then(parallel::Warm::start);
     // A body's box grows by the margin and by how far its points may move in the step.
     let pad = |placed: &Placement| margin + placed.travel.farthest();
     let recomputed = set.refresh(

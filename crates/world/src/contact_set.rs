@@ -626,6 +626,14 @@ impl ContactSet {
         self.entries[index].state.blocks = blocks;
     }
 
+    /// How many blocks the last rows stage built: the set's pairs hold their blocks in set
+    /// order, so the last pair's end where they all do (until the pass after it adds pairs).
+    pub(crate) fn blocks_built(&self) -> usize {
+        self.entries
+            .last()
+            .map_or(0, |entry| entry.state.blocks.end)
+    }
+
     /// The contact owning block `block` of this step's problem.
     pub(crate) fn contact_of_block(&self, block: usize) -> Option<&Contact> {
         self.entries

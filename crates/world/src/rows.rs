@@ -35,11 +35,15 @@ const RUN: usize = 16;
 /// copy of the helpers' share and the wait for the last of them cost about what they save.
 const PARALLEL_ROWS: usize = 256;
 
-/// Fewest pairs for which a collision pass on the calling thread alone wakes the pool's
+/// Fewest blocks for which a collision pass on the calling thread alone wakes the pool's
 /// helpers for the rows: a helper spinning through the pass cost the 210-cube pyramid (some 600
-/// pairs, their rows 0.15 ms) more than it saved, in its solve's and integration's time; the
-/// 820-cube one's rows (some 2,400 pairs) went from 0.64–0.77 to 0.50–0.56 ms (four
-/// interleaved pairs of runs).
+/// pairs of one block each, their rows 0.15 ms) more than it saved, in its solve's and
+/// integration's time; the 820-cube one's rows (some 2,400 blocks) went from 0.64–0.77 to
+/// 0.50–0.56 ms (four interleaved pairs of runs). Counted in blocks rather than pairs: the
+/// resting bin of 300 small cubes holds 734 pairs, but cubes lying askew take 1,359 blocks
+/// (bearing parts, landing points), and waking for them took 0.11–0.25 ms off its 2.1 ms step
+/// (alternate steps of one run, seconds 5–10, three runs), where counting pairs kept its rows
+/// on one thread.
 const WAKE_FOR_ROWS: usize = 1024;
 
 /// Whether the rows of a set of `pairs` pairs are worth building on every core, if the pool's
@@ -48,9 +52,11 @@ pub(crate) fn worth_every_core(pairs: usize) -> bool {
     pairs >= PARALLEL_ROWS
 }
 
-/// Whether the rows of a set of `pairs` pairs are worth waking the pool's helpers for.
-pub(crate) fn worth_waking(pairs: usize) -> bool {
-    pairs >= WAKE_FOR_ROWS
+/// Whether the rows of `set` are worth waking the pool's helpers for: by the blocks its pairs
+/// took in the last step, or by its pairs where they are more (at least a block each, once
+/// their rows are built).
+pub(crate) fn worth_waking(set: &ContactSet) -> bool {
+    set.contacts().len().max(set.blocks_built()) >= WAKE_FOR_ROWS
 }
 
 /// What a pair's rows are built from, besides the pair.
