@@ -414,6 +414,31 @@ mod tests {
         }
     }
 
+    /// The helpers are woken for the rows by the blocks the last rows stage built: 600 faces
+    /// flat on the floor take a block each, short of the mark, but 600 faces on one edge, the
+    /// far edge 2 cm up, take a block for the edge and a landing block at each far corner.
+    #[test]
+    fn the_rows_are_worth_waking_for_by_their_blocks() {
+        let pairs = 600;
+        let mut flat = set_of(pairs);
+        let (problem, _) = build(&mut flat, 1, false).unwrap();
+        assert_eq!((flat.blocks_built(), problem.blocks.len()), (pairs, pairs));
+        assert!(!worth_waking(&flat));
+        let mut tilted = set_of(pairs);
+        assert!(!worth_waking(&tilted), "no rows built yet");
+        for index in 0..pairs {
+            tilted.contact_mut(index).depths = vec![0.02, 0.0, 0.0, 0.02];
+        }
+        let (problem, _) = build(&mut tilted, 1, false).unwrap();
+        assert_eq!(tilted.blocks_built(), problem.blocks.len());
+        assert_eq!(
+            problem.blocks.len(),
+            3 * pairs,
+            "a face and two landings a pair"
+        );
+        assert!(worth_waking(&tilted));
+    }
+
     /// A pair whose rows cannot be built is an error naming it; of two such, the first in the
     /// set's order, wherever the threads built them.
     #[test]
