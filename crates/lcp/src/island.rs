@@ -140,6 +140,11 @@ impl BlockIslands {
     pub(crate) fn iter(&self) -> impl Iterator<Item = &[usize]> {
         self.ranges.iter().map(|range| &self.blocks[range.clone()])
     }
+
+    /// The bodies as [`BlockIslands::group`] joined them.
+    pub(crate) fn body_sets(&mut self) -> &mut DisjointSets {
+        &mut self.sets
+    }
 }
 
 #[cfg(test)]

@@ -97,7 +97,7 @@
 
 use nalgebra::{Matrix6, Vector3, Vector6};
 
-use crate::island::BlockIslands;
+use crate::island::{BlockIslands, DisjointSets};
 use crate::quiet::Quiet;
 use crate::{Jacobian, LcpError, Problem, Projection, SolverBody, TwistCoupling};
 
@@ -228,6 +228,49 @@ pub struct PgsWorkspace {
     block_applied: Vec<f64>,
     /// Which blocks the sweeps pass over.
     quiet: Quiet,
+}
+
+impl PgsWorkspace {
+    /// The last solve's bodies in islands: joined through each block between two bodies an
+    /// impulse can move (a finite mass or inertia), the root of each island its smallest body.
+    /// The solve's sweeps stop island by island on these; a caller that weighs the answer
+    /// island by island (a shock pass's energy guard, say) can take them instead of joining
+    /// the same blocks again. Holds no body before the first solve, and the last problem's
+    /// after a solve that failed its checks.
+    ///
+    /// ```
+    /// use nalgebra::{Matrix3, Vector3};
+    /// use tatami_lcp::pgs::{self, PgsParams, PgsWorkspace};
+    /// use tatami_lcp::{Block, BodyId, BoundsProjection, Jacobian, Problem, Row, RowBound, SolverBody};
+    ///
+    /// // Bodies 0 and 1 joined by a block, 2 by one to the fixed body 3.
+    /// let free = SolverBody {
+    ///     inv_mass: 1.0,
+    ///     inv_inertia_world: Matrix3::identity(),
+    ///     linear_velocity: Vector3::zeros(),
+    ///     angular_velocity: Vector3::zeros(),
+    /// };
+    /// let jacobian = Jacobian { linear_a: Vector3::z(), ..Jacobian::default() };
+    /// let block = |a: usize, b: usize, row: usize| Block {
+    ///     body_a: BodyId(a),
+    ///     body_b: BodyId(b),
+    ///     rows: row..row + 1,
+    ///     projection: BoundsProjection(vec![RowBound::NonNegative]),
+    /// };
+    /// let mut problem = Problem {
+    ///     bodies: vec![free, free, free, SolverBody::fixed()],
+    ///     rows: vec![Row { jacobian, target: 0.0, impulse: 0.0 }; 2],
+    ///     blocks: vec![block(1, 0, 0), block(2, 3, 1)],
+    /// };
+    /// let mut workspace = PgsWorkspace::default();
+    /// pgs::solve_in_place(&mut problem, &mut workspace, &PgsParams::default())?;
+    /// let islands = workspace.body_islands();
+    /// assert_eq!([0, 1, 2, 3].map(|k| islands.root(k)), [0, 0, 2, 3]);
+    /// # Ok::<(), tatami_lcp::LcpError>(())
+    /// ```
+    pub fn body_islands(&mut self) -> &mut DisjointSets {
+        self.islands.body_sets()
+    }
 }
 
 /// Solves `problem` with default parameters and a fresh workspace.
