@@ -1075,13 +1075,16 @@ mod tests {
         assert_eq!((world.time(), world.steps()), (time, steps));
     }
 
+    /// A 1 m cube centred at `(x, 0, z)`.
+    fn cube(x: f64, z: f64) -> BodyDesc {
+        BodyDesc::dynamic(Shape::cuboid([1.0; 3])).position([x, 0.0, z])
+    }
+
     /// The shock pass's energy guard undoes the pass island by island: the island it sped up
     /// gets its velocities and impulses back — its contacts with the floor included — and the
     /// island it slowed keeps the pass's, as do the floor and everything else.
     #[test]
     fn the_energy_guard_restores_only_the_islands_that_gained() {
-        let cube =
-            |x: f64, z: f64| BodyDesc::dynamic(Shape::cuboid([1.0; 3])).position([x, 0.0, z]);
         let mut world = World::builder()
             .body(BodyDesc::fixed(Shape::cuboid([40.0, 40.0, 2.0])).position([0.0, 0.0, -1.0]))
             .body(cube(-5.0, 0.5))
@@ -1149,8 +1152,6 @@ mod tests {
     /// bodies joined afresh.
     #[test]
     fn the_solves_islands_are_the_dynamic_bodies_islands() {
-        let cube =
-            |x: f64, z: f64| BodyDesc::dynamic(Shape::cuboid([1.0; 3])).position([x, 0.0, z]);
         let mut world = World::builder()
             .body(BodyDesc::fixed(Shape::cuboid([40.0, 40.0, 2.0])).position([0.0, 0.0, -1.0]))
             .body(

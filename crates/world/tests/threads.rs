@@ -1,9 +1,10 @@
 //! A step gives the same bits on one thread as on two: collision pairs are computed on every
 //! core, each as a function of its two bodies alone, and written into the contact set in pair
 //! order; the pairs' rows are built on every core, the helpers' share apart and then joined in
-//! the set's order, while a helper makes the warm start's guess for new pairs; the position pass, on its own copy of the problem, runs beside the velocity
-//! solve, computes the shock passes' held responses for both, and its helper then takes a share
-//! of the bodies' motions. So do worlds stepped at once, each inside one of the pool's workers.
+//! the set's order, while a helper makes the warm start's guess for new pairs; the position
+//! pass, on its own copy of the problem, runs beside the velocity solve, computes the shock
+//! passes' held responses for both, and its helper then takes a share of the bodies' motions.
+//! So do worlds stepped at once, each inside one of the pool's workers.
 
 use nalgebra::{UnitQuaternion, Vector3};
 use tatami_world::dropped::{Random, mixed_shape};
