@@ -44,6 +44,11 @@ pub(crate) struct CollisionWorkspace {
 }
 
 impl CollisionWorkspace {
+    /// Whether the next pass brings the held pairs up to date on every core.
+    pub(crate) fn next_pass_on_every_core(&self) -> bool {
+        self.last_computed >= PARALLEL_PASS
+    }
+
     /// The pairs whose boxes, grown by the margin and by how far their points may move in the
     /// step, overlapped in the last pass: every pair that may meet in the step.
     pub(crate) fn pairs(&self) -> &[(usize, usize)] {
@@ -171,6 +176,7 @@ pub(crate) fn detect(
     let base_angle = feature_angle;
     let feature_angle = FeatureAngle::new(feature_angle);
     let plain = Reach::plain(margin, dt, gravity);
+    let on_every_core = workspace.next_pass_on_every_core();
     let CollisionWorkspace {
         boxes,
         is_static,
@@ -228,7 +234,7 @@ pub(crate) fn detect(
     // when the last pass computed many (each contact is a pure function of the two bodies, so
     // the result does not depend on the number of threads); then the new pairs are computed,
     // and join the set in pair order.
-    let on_every_core = *last_computed >= PARALLEL_PASS;
+
     // A large set's rows are built on every core (`crate::rows`): when this pass keeps to the
     // calling thread, the pool's helpers are woken now, so they are awake by then.
     let mut warm = (!on_every_core && rows::worth_waking(set)).then(parallel::Warm::start);

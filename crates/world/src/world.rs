@@ -282,8 +282,14 @@ impl World {
     /// Forces set for the step act in each, a kinematic target is reached a share at a time,
     /// and [`World::contacts`], [`World::problem`] and the contact forces are the last
     /// substep's. Should a substep fail, the world is left as that substep found it.
+    ///
+    /// Large scenes run on every core of rayon's pool. When the next step's collision will,
+    /// the pool's helpers spin on for up to 2 ms after the step returns, or until the next
+    /// step, taking any other job the pool is handed meanwhile: a step that follows at once
+    /// then starts without waiting for them to wake.
     pub fn step(&mut self, dt: f64) -> Result<(), StepError> {
         check_time_step(dt)?;
+        self.keep_helpers_warm();
         let count = substeps::count(
             &self.bodies,
             self.contact_set.contacts(),
@@ -306,12 +312,22 @@ impl World {
             self.timings = timings;
         }
         self.step_inputs.finish(&mut self.bodies);
+        self.keep_helpers_warm();
         let y = dt - self.time_compensation;
         let t = self.time + y;
         self.time_compensation = (t - self.time) - y;
         self.time = t;
         self.steps += 1;
         Ok(())
+    }
+
+    /// Keeps the pool's helpers spinning for the next collision pass, when it runs on every
+    /// core ([`parallel::keep_warm_for_next_step`]): called as a step ends, so that the next
+    /// step finds them awake, and as one starts, should they have stopped since.
+    fn keep_helpers_warm(&self) {
+        if self.collision_workspace.next_pass_on_every_core() {
+            parallel::keep_warm_for_next_step();
+        }
     }
 
     /// One step of `dt` through every stage, as [`World::step`] describes.

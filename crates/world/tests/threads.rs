@@ -4,7 +4,8 @@
 //! the set's order, while a helper makes the warm start's guess for new pairs; the position
 //! pass, on its own copy of the problem, runs beside the velocity solve, computes the shock
 //! passes' held responses for both, and its helper then takes a share of the bodies' motions.
-//! So do worlds stepped at once, each inside one of the pool's workers.
+//! So do a world stepped from the program's own thread, the pool's helpers spinning on between
+//! its steps, and worlds stepped at once, each inside one of the pool's workers.
 
 use nalgebra::{UnitQuaternion, Vector3};
 use tatami_world::dropped::{Random, mixed_shape};
@@ -91,6 +92,22 @@ fn one_and_two_threads_give_the_same_bits() {
     // The run exercised the parallel paths: every body rests on the floor or another body, and
     // there are enough pairs for their rows to be built on every core.
     assert!(touching >= 256, "only {touching} touching pairs");
+}
+
+/// Stepped from the program's own thread, as most programs step a world, on rayon's global
+/// pool (a thread per core), whose helpers spin on between two steps for the next collision
+/// pass. The bits of one thread (on a machine of one core the pool has no helpers, and this
+/// checks the run against itself).
+#[test]
+fn stepped_from_the_programs_own_thread_with_helpers_kept_warm_gives_the_bits_of_one_thread() {
+    let (one, _) = run(1, 120);
+    let world = stepped(120);
+    let differ = one
+        .iter()
+        .zip(bits(&world))
+        .filter(|(a, b)| **a != *b)
+        .count();
+    assert_eq!(differ, 0, "{differ} of {} bodies differ", one.len());
 }
 
 /// Several worlds stepped at once on a pool of two threads (many simulations run side by side,
