@@ -32,7 +32,10 @@
 //! also dropped from `N − 1` further seeds, and a summary gives each engine's median over the
 //! courses and Tatami's ratio to rapier3d-f64 course by course, with when each came to rest:
 //! how soon one course settles moves a pile's median as much as the engines do
-//! (`-- --seeds=5 dropped`).
+//! (`-- --seeds=5 dropped`). With `--phases` a second table splits each run into its five
+//! two-second phases: the median step of each, and the share of its time in collision, the
+//! contact set and rows (a pile falls, lands, settles and rests in turn, and its median step
+//! over the run reads only the settling).
 
 use std::cell::RefCell;
 use std::rc::Rc;
@@ -49,6 +52,8 @@ const STEPS: usize = 600;
 const END_STEPS: usize = 60;
 /// A scene is at rest once no dynamic body's centre moves faster than this (m/s), 1 cm/s.
 const REST_SPEED: f64 = 0.01;
+/// Steps of a phase of `--phases`, two seconds at `DT`.
+const PHASE_STEPS: usize = 120;
 
 /// A random orientation (a normalised random quaternion).
 fn random_rotation(random: &mut Random) -> UnitQuaternion<f64> {
@@ -168,7 +173,12 @@ struct Measured {
     /// When the scene came to rest (s): the end of the last step in which a dynamic body's
     /// centre moved faster than [`REST_SPEED`]; `None` if one still did in the last step.
     at_rest_from: Option<f64>,
+    phases: Phases,
 }
+
+/// Per phase of [`PHASE_STEPS`] steps: the median step, and the share of the phase's time in
+/// collision and in the contact set and rows.
+type Phases = Vec<(Duration, f64)>;
 
 /// A body's pose and speed as an engine reports it.
 struct State {
@@ -239,7 +249,18 @@ impl Tally {
     }
 
     fn measured(self, scene: &Scene) -> Measured {
+        let phases = (self.times.chunks(PHASE_STEPS))
+            .zip(self.stages[0].chunks(PHASE_STEPS))
+            .zip(self.stages[1].chunks(PHASE_STEPS))
+            .map(|((times, collision), rows)| {
+                let total: Duration = times.iter().sum();
+                let outside: Duration = collision.iter().chain(rows).sum();
+                let share = outside.as_secs_f64() / total.as_secs_f64().max(f64::MIN_POSITIVE);
+                (median(times.to_vec()), share)
+            })
+            .collect();
         Measured {
+            phases,
             step: median(self.times),
             stages: self.stages.map(median),
             moved: self.moved,
@@ -508,9 +529,10 @@ fn main() {
             std::process::exit(2);
         }
     };
+    let by_phase = arguments.iter().any(|a| a == "--phases");
     let filters: Vec<&String> = arguments
         .iter()
-        .filter(|a| !a.starts_with("--seeds="))
+        .filter(|a| !a.starts_with("--seeds=") && *a != "--phases")
         .collect();
     let cubes = |_: &mut Random, _: usize| Shape::cuboid([1.0; 3]);
     let mut scenes: Vec<(String, Scene)> = vec![
@@ -557,6 +579,8 @@ fn main() {
     // Each pile's median step per engine and course, and when it came to rest, for the summary
     // over courses.
     let mut piles: Vec<Course> = Vec::new();
+    // Each run's phases, for `--phases`.
+    let mut phases: Vec<(String, &str, Phases)> = Vec::new();
     for (name, scene) in scenes.iter().filter(|(n, _)| wanted(n, &scene_names)) {
         let chosen: Vec<(&str, Engine)> = engines
             .into_iter()
@@ -578,6 +602,7 @@ fn main() {
                         m.penetration,
                         rest_time(m.at_rest_from),
                     );
+                    phases.push((name.clone(), engine, m.phases));
                     if let Some(pile) = [CUBE_PILE, MIXED_PILE]
                         .into_iter()
                         .find(|pile| name.starts_with(pile))
@@ -596,6 +621,39 @@ fn main() {
     }
     if courses > 1 {
         print_over_courses(&piles);
+    }
+    if by_phase {
+        print_phases(&phases);
+    }
+}
+
+/// Under `--phases`: each run's median step per two-second phase, with the share of the
+/// phase's time in collision and in the contact set and rows.
+fn print_phases(runs: &[(String, &str, Phases)]) {
+    let seconds = PHASE_STEPS as f64 * DT;
+    let count = STEPS / PHASE_STEPS;
+    let heads: Vec<String> = (0..count)
+        .map(|k| {
+            format!(
+                "{:.0}–{:.0} s",
+                k as f64 * seconds,
+                (k + 1) as f64 * seconds
+            )
+        })
+        .collect();
+    println!();
+    println!(
+        "Median step (ms) per phase, and the share of its time in collision, contact set and rows:"
+    );
+    println!();
+    println!("| scene | engine | {} |", heads.join(" | "));
+    println!("|---|---|{}", "---:|".repeat(count));
+    for (name, engine, phases) in runs {
+        let cells: Vec<String> = phases
+            .iter()
+            .map(|(step, share)| format!("{:.2} ({:.0}%)", step.as_secs_f64() * 1e3, share * 100.0))
+            .collect();
+        println!("| {name} | {engine} | {} |", cells.join(" | "));
     }
 }
 
