@@ -231,10 +231,9 @@ pub(crate) fn detect(
     };
     // Stages: the pairs the set holds are brought up to date (recomputed in place where a body
     // moved) while the broad phase finds the overlapping pairs and meets them, on every core
-    // when the last pass computed many (each contact is a pure function of the two bodies, so
-    // the result does not depend on the number of threads); then the new pairs are computed,
-    // and join the set in pair order.
-
+    // when the last pass computed many (`on_every_core`; each contact is a pure function of
+    // the two bodies, so the result does not depend on the number of threads); then the new
+    // pairs are computed, and join the set in pair order.
     // A large set's rows are built on every core (`crate::rows`): when this pass keeps to the
     // calling thread, the pool's helpers are woken now, so they are awake by then.
     let mut warm = (!on_every_core && rows::worth_waking(set)).then(parallel::Warm::start);

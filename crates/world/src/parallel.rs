@@ -273,6 +273,7 @@ pub(crate) fn keep_warm_for_next_step() {
     let mut warm = WARM_FOR_NEXT_STEP
         .lock()
         .unwrap_or_else(PoisonError::into_inner);
+    // Started less than half their spin ago, they still spin well into the coming loop.
     if let Some((_, since)) = &*warm
         && since.elapsed() < LONGEST_WARM / 2
     {
